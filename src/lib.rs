@@ -1,0 +1,39 @@
+//! # pbuffer
+//!
+//! A `#![no_std]`, allocation-free, fixed-point span rasterizer for embedded
+//! displays: screen-space polygons become horizontal spans, decided exactly by the
+//! pixel-centre, top-left rule of the project's conventions, and drawn through any
+//! embedded-graphics [`DrawTarget`](embedded_graphics_core::draw_target::DrawTarget).
+//!
+//! The flow is one way: [`ScreenPoint`]s (fixed point, S sub-pixel bits) ->
+//! [`ScanConverter`] (edge table, active edges, sorted crossings) or [`XorFiller`]
+//! (modulo-2 code row) -> [`Span`]s -> a [`SpanSink`]: [`FillSolid`],
+//! [`ContiguousRows`] or the packed 1-bpp [`PackedFramebuffer`].
+//!
+//! No input panics: bad input is an [`Error`]. Nothing is allocated: capacities are
+//! const generics.
+#![no_std]
+#![forbid(unsafe_code)]
+#![deny(missing_docs, missing_debug_implementations)]
+#![warn(
+    clippy::cast_lossless,
+    clippy::semicolon_if_nothing_returned,
+    clippy::doc_markdown,
+    clippy::redundant_closure_for_method_calls,
+    trivial_numeric_casts,
+    unused_qualifications
+)]
+
+pub mod codefill;
+mod error;
+mod framebuffer;
+mod geometry;
+pub mod scan;
+mod span;
+
+pub use codefill::XorFiller;
+pub use error::Error;
+pub use framebuffer::{packed_len, PackedFramebuffer};
+pub use geometry::{ScreenPoint, Viewport, GUARD_BAND_PX, MAX_SUBPIXEL_BITS, MAX_VIEWPORT};
+pub use scan::{FillRule, ScanConverter};
+pub use span::{ContiguousRows, FillSolid, Span, SpanSink, ROW_SEGMENTS};
