@@ -189,3 +189,69 @@ impl<const W: usize, const H: usize, const N: usize> SpanSink for PackedFramebuf
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use embedded_graphics_core::geometry::Point;
+
+    type Fb = PackedFramebuffer<21, 3, { packed_len(21, 3) }>;
+
+    #[test]
+    fn every_run_sets_exactly_its_pixels_msb_first() {
+        for x0 in 0..21 {
+            for x1 in x0 + 1..=21 {
+                let mut fb = Fb::new();
+                fb.write_run(1, x0, x1, true);
+                for y in 0..3 {
+                    for x in 0..24 {
+                        let want = y == 1 && (x0..x1).contains(&(x as usize));
+                        assert_eq!(fb.pixel(x, y), want, "run {x0}..{x1} pixel {x},{y}");
+                    }
+                }
+                fb.write_run(1, x0, x1, false);
+                assert_eq!(fb, Fb::new(), "clearing run {x0}..{x1}");
+            }
+        }
+    }
+
+    #[test]
+    fn byte_layout_is_row_major_msb_first() {
+        let mut fb = Fb::new();
+        fb.draw_iter([
+            Pixel(Point::new(0, 0), BinaryColor::On),
+            Pixel(Point::new(9, 2), BinaryColor::On),
+        ])
+        .unwrap();
+        assert_eq!(fb.as_bytes()[0], 0x80);
+        assert_eq!(fb.as_bytes()[2 * 3 + 1], 0x40);
+        assert_eq!(fb.as_bytes().iter().map(|b| b.count_ones()).sum::<u32>(), 2);
+    }
+
+    #[test]
+    fn clear_on_leaves_row_padding_off_and_page_bytes_read_columns() {
+        let mut fb = Fb::new();
+        DrawTarget::clear(&mut fb, BinaryColor::On).unwrap();
+        assert_eq!(
+            fb.as_bytes()[2],
+            0b1111_1000,
+            "21 px: 5 bits of the third byte"
+        );
+        assert_eq!(
+            fb.page_byte(0, 20),
+            0b0000_0111,
+            "3 rows on, rows 3..8 absent"
+        );
+        assert_eq!(fb.page_byte(0, 21), 0);
+    }
+
+    #[test]
+    fn fill_solid_clips_to_the_buffer() {
+        let mut fb = Fb::new();
+        let area = Rectangle::new(Point::new(-5, -5), Size::new(100, 100));
+        fb.fill_solid(&area, BinaryColor::On).unwrap();
+        let mut full = Fb::new();
+        DrawTarget::clear(&mut full, BinaryColor::On).unwrap();
+        assert_eq!(fb, full);
+    }
+}

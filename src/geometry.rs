@@ -54,10 +54,7 @@ impl<Frac: LeEqU32> ScreenPoint<Frac> {
         if !x.is_finite() || !y.is_finite() {
             return Err(Error::NonFinite);
         }
-        match (
-            FixedI32::checked_from_num(x),
-            FixedI32::checked_from_num(y),
-        ) {
+        match (FixedI32::checked_from_num(x), FixedI32::checked_from_num(y)) {
             (Some(x), Some(y)) => Ok(Self { x, y }),
             _ => Err(Error::OutOfRange),
         }
@@ -68,10 +65,7 @@ impl<Frac: LeEqU32> ScreenPoint<Frac> {
         if !x.is_finite() || !y.is_finite() {
             return Err(Error::NonFinite);
         }
-        match (
-            FixedI32::checked_from_num(x),
-            FixedI32::checked_from_num(y),
-        ) {
+        match (FixedI32::checked_from_num(x), FixedI32::checked_from_num(y)) {
             (Some(x), Some(y)) => Ok(Self { x, y }),
             _ => Err(Error::OutOfRange),
         }

@@ -74,7 +74,11 @@ impl<const EDGES: usize, const WORDS: usize> XorFiller<EDGES, WORDS> {
             let mut last = 0;
             let mut toggled = 0usize;
             // A crossing at x = width counts for no pixel of the row: skip it.
-            for x in crossings.iter().map(|c| usize::from(c.x)).filter(|&x| x < width) {
+            for x in crossings
+                .iter()
+                .map(|c| usize::from(c.x))
+                .filter(|&x| x < width)
+            {
                 self.row.toggle(x);
                 first = first.min(x / 32);
                 last = last.max(x / 32);

@@ -31,9 +31,7 @@ impl<const WORDS: usize> CodeRow<WORDS> {
 
     /// A cleared row.
     pub const fn new() -> Self {
-        Self {
-            words: [0; WORDS],
-        }
+        Self { words: [0; WORDS] }
     }
 
     /// Flips the flag of pixel `x`; pixels beyond the row are ignored (a crossing
@@ -77,8 +75,9 @@ impl<const WORDS: usize> CodeRow<WORDS> {
             // Walk alternating runs of ones and zeros inside the word.
             while pos < 32 {
                 if let Some(start) = open {
+                    // Shifting brought zeros in at the top: a run reaching bit 31 stays open.
                     let ones = (!bits).trailing_zeros();
-                    if ones >= 32 {
+                    if pos + ones >= 32 {
                         break;
                     }
                     let x1 = base + (pos + ones) as usize;
@@ -101,5 +100,67 @@ impl<const WORDS: usize> CodeRow<WORDS> {
             run(start, (end * 32).min(limit))?;
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A xorshift generator, so the tests need no dependency.
+    fn words(seed: &mut u64) -> u32 {
+        *seed ^= *seed << 13;
+        *seed ^= *seed >> 7;
+        *seed ^= *seed << 17;
+        (*seed >> 16) as u32
+    }
+
+    #[test]
+    fn prefix_xor_equals_bit_by_bit_running_xor() {
+        let mut seed = 0x9E37_79B9_7F4A_7C15;
+        for _ in 0..10_000 {
+            let w = words(&mut seed) & words(&mut seed);
+            let mut expected = 0u32;
+            let mut parity = 0u32;
+            for k in 0..32 {
+                parity ^= (w >> k) & 1;
+                expected |= parity << k;
+            }
+            assert_eq!(prefix_xor(w), expected, "word {w:#010x}");
+        }
+    }
+
+    #[test]
+    fn fill_and_drain_give_the_runs_between_toggles_across_words() {
+        let mut seed = 0x1234_5678_9ABC_DEF1;
+        for _ in 0..2_000 {
+            let mut row = CodeRow::<4>::new();
+            let mut flags = [false; 128];
+            for _ in 0..(words(&mut seed) % 9) {
+                let x = (words(&mut seed) % 128) as usize;
+                row.toggle(x);
+                flags[x] = !flags[x];
+            }
+            let limit = 100 + (words(&mut seed) % 29) as usize;
+            let mut expected = [false; 128];
+            let mut parity = false;
+            for x in 0..128 {
+                parity ^= flags[x];
+                expected[x] = parity && x < limit;
+            }
+            row.fill(0, 4);
+            let mut got = [false; 128];
+            let mut last_end = None;
+            row.drain_runs(0, 4, limit, |x0, x1| {
+                assert!(x0 < x1 && x1 <= limit, "run {x0}..{x1} beyond {limit}");
+                assert_ne!(last_end, Some(x0), "runs that touch must be joined");
+                last_end = Some(x1);
+                got[x0..x1].iter_mut().for_each(|p| *p = true);
+                Ok::<(), ()>(())
+            })
+            .unwrap();
+            assert_eq!(got, expected);
+            assert_eq!(row, CodeRow::new(), "drain leaves the row cleared");
+        }
     }
 }

@@ -49,15 +49,8 @@ pub(crate) struct PolygonWalker<const N: usize> {
 }
 
 /// The vertices of a polygon as edges in half-units, closing edge included.
-fn edge_lines<Frac: LeEqU32>(
-    points: &[ScreenPoint<Frac>],
-) -> impl Iterator<Item = EdgeLine> + '_ {
-    let half = |p: &ScreenPoint<Frac>| {
-        (
-            2 * i64::from(p.x.to_bits()),
-            2 * i64::from(p.y.to_bits()),
-        )
-    };
+fn edge_lines<Frac: LeEqU32>(points: &[ScreenPoint<Frac>]) -> impl Iterator<Item = EdgeLine> + '_ {
+    let half = |p: &ScreenPoint<Frac>| (2 * i64::from(p.x.to_bits()), 2 * i64::from(p.y.to_bits()));
     let closing = points.last().into_iter().chain(points.iter());
     closing
         .zip(points.iter())
