@@ -57,7 +57,7 @@ impl<const WORDS: usize> CodeRow<WORDS> {
     }
 
     /// Calls `run(x0, x1)` for each maximal run of set pixels in words `first..end`,
-    /// clearing those words; runs are cut at `limit`.
+    /// clearing those words; runs are cut at `limit` (pixels from `limit` on are dropped).
     #[inline]
     pub fn drain_runs<E>(
         &mut self,
@@ -80,8 +80,10 @@ impl<const WORDS: usize> CodeRow<WORDS> {
                     if pos + ones >= 32 {
                         break;
                     }
-                    let x1 = base + (pos + ones) as usize;
-                    run(start, x1.min(limit))?;
+                    let x1 = (base + (pos + ones) as usize).min(limit);
+                    if start < x1 {
+                        run(start, x1)?;
+                    }
                     open = None;
                     bits >>= ones;
                     pos += ones;
@@ -97,7 +99,10 @@ impl<const WORDS: usize> CodeRow<WORDS> {
             }
         }
         if let Some(start) = open {
-            run(start, (end * 32).min(limit))?;
+            let x1 = (end * 32).min(limit);
+            if start < x1 {
+                run(start, x1)?;
+            }
         }
         Ok(())
     }
@@ -153,7 +158,11 @@ mod tests {
             let mut last_end = None;
             row.drain_runs(0, 4, limit, |x0, x1| {
                 assert!(x0 < x1 && x1 <= limit, "run {x0}..{x1} beyond {limit}");
-                assert_ne!(last_end, Some(x0), "runs that touch must be joined");
+                assert_ne!(
+                    last_end,
+                    Some(x0),
+                    "runs that touch must be joined: {flags:?} limit {limit}"
+                );
                 last_end = Some(x1);
                 got[x0..x1].iter_mut().for_each(|p| *p = true);
                 Ok::<(), ()>(())
