@@ -1,22 +1,109 @@
-//! Firmware smoke test: links pbuffer for thumbv7em-none-eabihf, runs it under QEMU
-//! (mps2-an386, semihosting) and prints an FNV-1a 64 hash of the framebuffer.
+//! Firmware smoke test for pbuffer on a Cortex-M4 (QEMU `mps2-an386`, run by
+//! scripts/thumb-check): fills two polygons into a 128x64 packed framebuffer, prints the
+//! FNV-1a 64 hash of its bytes and the instruction count of each fill, and exits 0 only
+//! when the hash is the one the host computes for the same scene (see `EXPECTED`).
+//! A panic or an error exits non-zero (panic-semihosting's `exit` feature).
 #![no_std]
 #![no_main]
 
+use core::convert::Infallible;
+
+use cortex_m::peripheral::{syst::SystClkSource, SYST};
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
-use panic_semihosting as _; // a panic prints its message and exits with failure
+use embedded_graphics::pixelcolor::BinaryColor;
+use fixed::types::extra::U4;
+use panic_semihosting as _;
+use pbuffer::{packed_len, FillRule, PackedFramebuffer, ScanConverter, ScreenPoint};
+
+type Fb = PackedFramebuffer<128, 64, { packed_len(128, 64) }>;
+type P = ScreenPoint<U4>; // 4 sub-pixel bits: raw = pixels * 16
+
+/// A pentagram (self-intersecting: even-odd leaves its centre empty), sub-pixel vertices.
+const STAR: [P; 5] = [
+    P::from_bits(1024, 80),
+    P::from_bits(1287, 890),
+    P::from_bits(598, 390),
+    P::from_bits(1450, 390),
+    P::from_bits(761, 890),
+];
+/// A triangle with a vertex far beyond the guard band: takes the exact wide path.
+const WIDE: [P; 3] = [
+    P::from_bits(-100_000 * 16, 40 * 16),
+    P::from_bits(325, 811),
+    P::from_bits(968, 1022),
+];
+
+/// FNV-1a 64 of the framebuffer after both fills (1145 pixels set). Computed with pbuffer
+/// on the host for the same scene, whose pixels matched host_tests' f64 reference
+/// rasterizer (`reference::rasterize`) exactly. The conventions fix every pixel, so a
+/// change here means the rasterizer's output changed on the target or everywhere.
+const EXPECTED: u64 = 0xb1a6_9344_c4b8_5c2d;
 
 fn fnv1a64(bytes: &[u8]) -> u64 {
     bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
-        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
     })
+}
+
+/// Runs `f` and returns the instructions it took: with `-icount shift=0`, SysTick on the
+/// core clock advances once per 40 instructions (see shared FIRMWARE.md).
+fn count<R>(syst: &mut SYST, f: impl FnOnce() -> R) -> (R, u32) {
+    syst.clear_current();
+    let _ = syst.has_wrapped(); // clears COUNTFLAG
+    let r = f();
+    let ticks = 0x00ff_ffff - SYST::get_current();
+    assert!(!syst.has_wrapped(), "SysTick wrapped: measure in chunks");
+    (r, ticks * 40)
+}
+
+fn scene(syst: &mut SYST, fb: &mut Fb) -> Result<(), pbuffer::Error<Infallible>> {
+    let mut sc: ScanConverter<16> = ScanConverter::new();
+    let (r, n) = count(syst, || {
+        sc.fill(&STAR, FillRule::EvenOdd, BinaryColor::On, fb)
+    });
+    r?;
+    hprintln!("pbuffer-firmware: star (even-odd) {} instructions", n);
+    let (r, n) = count(syst, || {
+        sc.fill(&WIDE, FillRule::NonZero, BinaryColor::On, fb)
+    });
+    r?;
+    hprintln!(
+        "pbuffer-firmware: wide triangle (non-zero) {} instructions",
+        n
+    );
+    Ok(())
 }
 
 #[entry]
 fn main() -> ! {
-    let fb = [0u8; 128 * 64 / 8];
-    hprintln!("pbuffer-firmware: fb {} bytes fnv1a64={:016x}", fb.len(), fnv1a64(&fb));
-    debug::exit(debug::EXIT_SUCCESS);
+    let mut syst = cortex_m::Peripherals::take().unwrap().SYST;
+    syst.set_clock_source(SystClkSource::Core);
+    syst.set_reload(0x00ff_ffff);
+    syst.enable_counter();
+
+    let mut fb = Fb::new();
+    let status = match scene(&mut syst, &mut fb) {
+        Ok(()) => {
+            let hash = fnv1a64(fb.as_bytes());
+            let lit = fb.as_bytes().iter().map(|b| b.count_ones()).sum::<u32>();
+            hprintln!(
+                "pbuffer-firmware: 128x64 fb, {} pixels set, fnv1a64={:016x}",
+                lit,
+                hash
+            );
+            if hash == EXPECTED {
+                debug::EXIT_SUCCESS
+            } else {
+                hprintln!("pbuffer-firmware: FAIL: expected fnv1a64={:016x}", EXPECTED);
+                debug::EXIT_FAILURE
+            }
+        }
+        Err(e) => {
+            hprintln!("pbuffer-firmware: FAIL: fill error {:?}", e);
+            debug::EXIT_FAILURE
+        }
+    };
+    debug::exit(status);
     loop {}
 }

@@ -60,7 +60,10 @@ impl Rng {
 /// generated geometry, whose rounding mode is irrelevant because the result is exact).
 pub fn snap_raw(v: f64, s: u32) -> i32 {
     let r = (v * f64::from(1u32 << s)).round();
-    assert!(r.abs() < 2_147_483_647.0, "snap_raw: {v} out of i32 range at S={s}");
+    assert!(
+        r.abs() < 2_147_483_647.0,
+        "snap_raw: {v} out of i32 range at S={s}"
+    );
     r as i32
 }
 
@@ -81,7 +84,10 @@ pub struct RawPolygon {
 impl RawPolygon {
     /// The exact vertex values as f64.
     pub fn to_f64(&self) -> Vec<(f64, f64)> {
-        self.pts.iter().map(|&(x, y)| (raw_to_f64(x, self.s), raw_to_f64(y, self.s))).collect()
+        self.pts
+            .iter()
+            .map(|&(x, y)| (raw_to_f64(x, self.s), raw_to_f64(y, self.s)))
+            .collect()
     }
 }
 
@@ -100,7 +106,12 @@ pub enum Shape {
 
 impl Shape {
     /// All shapes.
-    pub const ALL: [Shape; 4] = [Shape::Triangle, Shape::Quad, Shape::Concave, Shape::SelfIntersecting];
+    pub const ALL: [Shape; 4] = [
+        Shape::Triangle,
+        Shape::Quad,
+        Shape::Concave,
+        Shape::SelfIntersecting,
+    ];
 }
 
 /// A snapped point near `(x, y)`. With probability 1/4 the point is put on the half-pixel
@@ -156,13 +167,44 @@ pub fn polygon(rng: &mut Rng, shape: Shape, s: u32, width: u32, height: u32) -> 
     RawPolygon { s, pts }
 }
 
+/// A random polygon with vertices far away: 3..=8 vertices at log-distributed distances
+/// from 1 px up to `max_px` around a centre inside the frame (sorted angles half of the
+/// time, so that the polygon often covers the frame; random order otherwise), so that long
+/// edges from far beyond the guard band cross the frame.
+pub fn far_polygon(rng: &mut Rng, s: u32, width: u32, height: u32, max_px: f64) -> RawPolygon {
+    let c = (
+        rng.range(0.0, f64::from(width)),
+        rng.range(0.0, f64::from(height)),
+    );
+    let n = 3 + rng.below(6) as usize;
+    let mut angles: Vec<f64> = (0..n).map(|_| rng.range(0.0, TAU)).collect();
+    if rng.chance(0.5) {
+        angles.sort_by(f64::total_cmp);
+    }
+    let pts = angles
+        .iter()
+        .map(|&t| {
+            let r = rng.log_uniform(1.0, max_px);
+            let x = (c.0 + r * t.cos()).clamp(-max_px, max_px);
+            let y = (c.1 + r * t.sin()).clamp(-max_px, max_px);
+            point(rng, s, x, y, true)
+        })
+        .collect();
+    RawPolygon { s, pts }
+}
+
 /// A random polygon given in full f64 precision (not snapped), for the snapping-error test.
 pub fn unsnapped_polygon(rng: &mut Rng, shape: Shape, width: u32, height: u32) -> Vec<(f64, f64)> {
     // Generate on a very fine grid (2^-40) and convert: full-precision values in practice.
     let p = polygon(rng, shape, 0, width, height);
     p.pts
         .iter()
-        .map(|&(x, y)| (f64::from(x) + rng.range(-0.5, 0.5), f64::from(y) + rng.range(-0.5, 0.5)))
+        .map(|&(x, y)| {
+            (
+                f64::from(x) + rng.range(-0.5, 0.5),
+                f64::from(y) + rng.range(-0.5, 0.5),
+            )
+        })
         .collect()
 }
 
@@ -206,8 +248,14 @@ impl Mesh {
 
 /// Twice the signed area of the raw triangle `a b c` (exact in i64; raw values < 2^31).
 pub fn orientation(a: (i32, i32), b: (i32, i32), c: (i32, i32)) -> i128 {
-    let (ax, ay, bx, by, cx, cy) =
-        (i128::from(a.0), i128::from(a.1), i128::from(b.0), i128::from(b.1), i128::from(c.0), i128::from(c.1));
+    let (ax, ay, bx, by, cx, cy) = (
+        i128::from(a.0),
+        i128::from(a.1),
+        i128::from(b.0),
+        i128::from(b.1),
+        i128::from(c.0),
+        i128::from(c.1),
+    );
     (bx - ax) * (cy - ay) - (by - ay) * (cx - ax)
 }
 
@@ -217,14 +265,23 @@ pub fn orientation(a: (i32, i32), b: (i32, i32), c: (i32, i32)) -> i128 {
 /// every triangle `(c, p_i, p_i+1)` has positive orientation and the fan winds once.
 pub fn fan(rng: &mut Rng, s: u32, width: u32, height: u32, radius: f64) -> Mesh {
     assert!(radius >= 4.0, "radius must dwarf the snapping error");
-    let c = (rng.range(0.0, f64::from(width)), rng.range(0.0, f64::from(height)));
+    let c = (
+        rng.range(0.0, f64::from(width)),
+        rng.range(0.0, f64::from(height)),
+    );
     let c_raw = point(rng, s, c.0, c.1, true);
     let mut vertices = vec![c_raw];
     let mut angle = rng.range(0.0, TAU);
     let end = angle + TAU;
     let centre = (raw_to_f64(c_raw.0, s), raw_to_f64(c_raw.1, s));
     while angle < end {
-        let p = point(rng, s, centre.0 + radius * angle.cos(), centre.1 + radius * angle.sin(), false);
+        let p = point(
+            rng,
+            s,
+            centre.0 + radius * angle.cos(),
+            centre.1 + radius * angle.sin(),
+            false,
+        );
         let last = *vertices.last().expect("centre");
         if vertices.len() == 1 || orientation(c_raw, last, p) > 0 {
             vertices.push(p);
@@ -237,16 +294,26 @@ pub fn fan(rng: &mut Rng, s: u32, width: u32, height: u32, radius: f64) -> Mesh 
     }
     let n = vertices.len() - 1;
     assert!(n >= 3, "fan too small");
-    let triangles = (1..=n).map(|i| [0, i, if i == n { 1 } else { i + 1 }]).collect();
+    let triangles = (1..=n)
+        .map(|i| [0, i, if i == n { 1 } else { i + 1 }])
+        .collect();
     let boundary = (1..=n).collect();
-    Mesh { s, vertices, triangles, boundary }
+    Mesh {
+        s,
+        vertices,
+        triangles,
+        boundary,
+    }
 }
 
 /// A jittered triangulated grid of `nx x ny` cells of about `cell` px starting at `origin`,
 /// each quad split into two triangles along a random diagonal; all triangles have positive
 /// orientation (the jitter is halved until they do).
 pub fn grid(rng: &mut Rng, s: u32, origin: (f64, f64), nx: usize, ny: usize, cell: f64) -> Mesh {
-    assert!(cell * f64::from(1u32 << s) >= 1.5, "cells must be wider than the snapping grid");
+    assert!(
+        cell * f64::from(1u32 << s) >= 1.5,
+        "cells must be wider than the snapping grid"
+    );
     let mut jitter = 0.45;
     for _attempt in 0..64 {
         let mut vertices = Vec::with_capacity((nx + 1) * (ny + 1));
@@ -272,14 +339,21 @@ pub fn grid(rng: &mut Rng, s: u32, origin: (f64, f64), nx: usize, ny: usize, cel
             }
         }
         // y grows downward: (a, b, c) = (top-left, top-right, bottom-right) has orientation > 0.
-        let ok = triangles.iter().all(|t| orientation(vertices[t[0]], vertices[t[1]], vertices[t[2]]) > 0);
+        let ok = triangles
+            .iter()
+            .all(|t| orientation(vertices[t[0]], vertices[t[1]], vertices[t[2]]) > 0);
         if ok {
             let mut boundary = Vec::new();
             boundary.extend((0..nx).map(|i| id(i, 0)));
             boundary.extend((0..ny).map(|j| id(nx, j)));
             boundary.extend((1..=nx).rev().map(|i| id(i, ny)));
             boundary.extend((1..=ny).rev().map(|j| id(0, j)));
-            return Mesh { s, vertices, triangles, boundary };
+            return Mesh {
+                s,
+                vertices,
+                triangles,
+                boundary,
+            };
         }
         jitter /= 2.0;
     }
@@ -309,7 +383,10 @@ mod tests {
                         let [c, p, q] = m.triangle_f64(t);
                         let a1 = (p.1 - c.1).atan2(p.0 - c.0);
                         let a2 = (q.1 - c.1).atan2(q.0 - c.0);
-                        assert!(orientation(m.vertices[0], m.triangle_raw(t)[1], m.triangle_raw(t)[2]) > 0);
+                        assert!(
+                            orientation(m.vertices[0], m.triangle_raw(t)[1], m.triangle_raw(t)[2])
+                                > 0
+                        );
                         (a2 - a1).rem_euclid(TAU)
                     })
                     .sum();

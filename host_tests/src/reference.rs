@@ -105,11 +105,15 @@ pub struct Polygon {
 impl Polygon {
     /// Prepares `pts` for queries at pixel centres within `[0, extent]^2`.
     pub fn new(pts: &[(f64, f64)], extent: f64) -> Self {
-        assert!(pts.iter().all(|p| p.0.is_finite() && p.1.is_finite()), "reference: non-finite vertex");
-        let fast = fast_path_is_exact(
-            pts.iter().flat_map(|p| [p.0, p.1]).chain([extent, 0.5]),
+        assert!(
+            pts.iter().all(|p| p.0.is_finite() && p.1.is_finite()),
+            "reference: non-finite vertex"
         );
-        Polygon { pts: pts.to_vec(), fast }
+        let fast = fast_path_is_exact(pts.iter().flat_map(|p| [p.0, p.1]).chain([extent, 0.5]));
+        Polygon {
+            pts: pts.to_vec(),
+            fast,
+        }
     }
 
     /// Whether the exact-f64 fast path is in use (for documentation in tests).
@@ -184,7 +188,10 @@ impl Polygon {
 
     /// Coverage of all pixel centres of a `width x height` frame, row-major.
     pub fn rasterize(&self, rule: Rule, width: u32, height: u32) -> Vec<bool> {
-        self.winding_map(width, height).into_iter().map(|w| rule.inside(w)).collect()
+        self.winding_map(width, height)
+            .into_iter()
+            .map(|w| rule.inside(w))
+            .collect()
     }
 }
 
@@ -219,7 +226,11 @@ pub fn winding_map(poly: &[(f64, f64)], width: u32, height: u32) -> Vec<i32> {
 pub fn distance_to_segment(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
     let (dx, dy) = (b.0 - a.0, b.1 - a.1);
     let len2 = dx * dx + dy * dy;
-    let t = if len2 > 0.0 { (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0) } else { 0.0 };
+    let t = if len2 > 0.0 {
+        (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
     let (qx, qy) = (a.0 + t * dx, a.1 + t * dy);
     ((p.0 - qx).powi(2) + (p.1 - qy).powi(2)).sqrt()
 }
@@ -227,7 +238,9 @@ pub fn distance_to_segment(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
 /// Distance from `p` to the nearest edge of the closed polygon `poly`.
 pub fn distance_to_boundary(poly: &[(f64, f64)], p: (f64, f64)) -> f64 {
     let n = poly.len();
-    (0..n).map(|i| distance_to_segment(p, poly[i], poly[(i + 1) % n])).fold(f64::INFINITY, f64::min)
+    (0..n)
+        .map(|i| distance_to_segment(p, poly[i], poly[(i + 1) % n]))
+        .fold(f64::INFINITY, f64::min)
 }
 
 /// Exact determinant sign for arbitrary finite f64 input (integer arithmetic).
@@ -243,7 +256,11 @@ pub mod exact {
         let bits = v.to_bits();
         let exp = ((bits >> 52) & 0x7ff) as i32;
         let frac = (bits & ((1u64 << 52) - 1)) as i64;
-        let (mut m, mut e) = if exp == 0 { (frac, -1074) } else { (frac | (1i64 << 52), exp - 1075) };
+        let (mut m, mut e) = if exp == 0 {
+            (frac, -1074)
+        } else {
+            (frac | (1i64 << 52), exp - 1075)
+        };
         let tz = m.trailing_zeros();
         m >>= tz;
         e += tz as i32;
@@ -253,13 +270,21 @@ pub mod exact {
     /// Sign of `(b.x - a.x)(p.y - a.y) - (b.y - a.y)(p.x - a.x)`, exactly.
     pub fn det_sign(a: (f64, f64), b: (f64, f64), p: (f64, f64)) -> Ordering {
         let vals = [a.0, a.1, b.0, b.1, p.0, p.1].map(decompose);
-        let emin = vals.iter().filter(|v| v.0 != 0).map(|v| v.1).min().unwrap_or(0);
+        let emin = vals
+            .iter()
+            .filter(|v| v.0 != 0)
+            .map(|v| v.1)
+            .min()
+            .unwrap_or(0);
         // Each value as an integer in units of 2^emin; must fit in 125 bits so that
         // differences fit in i128.
         let scaled = vals.map(|(m, e)| {
             let shift = (e - emin) as u32;
             let bits = 64 - m.unsigned_abs().leading_zeros();
-            assert!(m == 0 || bits + shift <= 125, "reference: coordinate range too wide for exact path");
+            assert!(
+                m == 0 || bits + shift <= 125,
+                "reference: coordinate range too wide for exact path"
+            );
             i128::from(m) << shift
         });
         let [ax, ay, bx, by, px, py] = scaled;
@@ -273,8 +298,14 @@ pub mod exact {
                 return d.cmp(&0);
             }
         }
-        let lhs = (p.signum() * q.signum(), mul_u128(p.unsigned_abs(), q.unsigned_abs()));
-        let rhs = (r.signum() * s.signum(), mul_u128(r.unsigned_abs(), s.unsigned_abs()));
+        let lhs = (
+            p.signum() * q.signum(),
+            mul_u128(p.unsigned_abs(), q.unsigned_abs()),
+        );
+        let rhs = (
+            r.signum() * s.signum(),
+            mul_u128(r.unsigned_abs(), s.unsigned_abs()),
+        );
         compare_signed(lhs, rhs)
     }
 
@@ -329,12 +360,18 @@ mod tests {
     fn exact_and_fast_paths_agree_on_snapped_values() {
         let mut state = 0x1234_5678_9abc_def0u64;
         let mut next = || {
-            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             ((state >> 33) as i64 % 2048 - 1024) as f64 / 16.0
         };
         for _ in 0..100_000 {
             let (a, b, p) = ((next(), next()), (next(), next()), (next(), next()));
-            assert_eq!(det_sign(true, a, b, p), exact::det_sign(a, b, p), "{a:?} {b:?} {p:?}");
+            assert_eq!(
+                det_sign(true, a, b, p),
+                exact::det_sign(a, b, p),
+                "{a:?} {b:?} {p:?}"
+            );
         }
     }
 
@@ -359,10 +396,16 @@ mod tests {
     fn fast_path_range_check() {
         assert!(Polygon::new(&[(0.0, 0.0), (100.25, 3.0), (5.0, 7.5)], 64.0).uses_fast_path());
         assert!(!Polygon::new(&[(0.0, 0.0), (0.1, 3.0), (5.0, 7.5)], 64.0).uses_fast_path());
-        assert!(!Polygon::new(&[(0.0, 0.0), (2f64.powi(22), 3.0), (5.0, 7.5 + 1.0 / 256.0)], 64.0)
-            .uses_fast_path());
-        assert!(Polygon::new(&[(0.0, 0.0), (2f64.powi(17), 3.0), (5.0, 7.5 + 1.0 / 256.0)], 64.0)
-            .uses_fast_path());
+        assert!(!Polygon::new(
+            &[(0.0, 0.0), (2f64.powi(22), 3.0), (5.0, 7.5 + 1.0 / 256.0)],
+            64.0
+        )
+        .uses_fast_path());
+        assert!(Polygon::new(
+            &[(0.0, 0.0), (2f64.powi(17), 3.0), (5.0, 7.5 + 1.0 / 256.0)],
+            64.0
+        )
+        .uses_fast_path());
     }
 
     /// The unit square with corners on pixel centres (1.5, 1.5)..(2.5, 2.5) covers only
@@ -388,7 +431,12 @@ mod tests {
         let b = [(0.5, 0.5), (4.5, 4.5), (0.5, 4.5)];
         let ra = rasterize(&a, Rule::EvenOdd, 5, 5);
         let rb = rasterize(&b, Rule::EvenOdd, 5, 5);
-        let quad = rasterize(&[(0.5, 0.5), (4.5, 0.5), (4.5, 4.5), (0.5, 4.5)], Rule::EvenOdd, 5, 5);
+        let quad = rasterize(
+            &[(0.5, 0.5), (4.5, 0.5), (4.5, 4.5), (0.5, 4.5)],
+            Rule::EvenOdd,
+            5,
+            5,
+        );
         for i in 0..25 {
             assert!(!(ra[i] && rb[i]), "pixel {i} drawn twice");
             assert_eq!(ra[i] || rb[i], quad[i]);
@@ -405,7 +453,10 @@ mod tests {
         let pts: Vec<(f64, f64)> = (0..5)
             .map(|k| {
                 let t = std::f64::consts::PI * (0.5 + 0.8 * k as f64);
-                ((16.0 + 14.0 * t.cos()).round(), (16.0 - 14.0 * t.sin()).round())
+                (
+                    (16.0 + 14.0 * t.cos()).round(),
+                    (16.0 - 14.0 * t.sin()).round(),
+                )
             })
             .collect();
         assert!(!covered(&pts, Rule::EvenOdd, 16.5, 16.5));
@@ -435,13 +486,23 @@ mod tests {
         for _ in 0..500 {
             let n = 3 + next(6) as usize;
             let s = [1.0, 2.0, 16.0][next(3) as usize];
-            let pts: Vec<(f64, f64)> =
-                (0..n).map(|_| ((next(24 * s as u64) as f64) / s - 2.0, (next(24 * s as u64) as f64) / s - 2.0)).collect();
+            let pts: Vec<(f64, f64)> = (0..n)
+                .map(|_| {
+                    (
+                        (next(24 * s as u64) as f64) / s - 2.0,
+                        (next(24 * s as u64) as f64) / s - 2.0,
+                    )
+                })
+                .collect();
             let poly = Polygon::new(&pts, 20.0);
             let map = poly.winding_map(20, 20);
             for j in 0..20 {
                 for i in 0..20 {
-                    assert_eq!(map[j * 20 + i], poly.winding(i as f64 + 0.5, j as f64 + 0.5), "{pts:?} {i} {j}");
+                    assert_eq!(
+                        map[j * 20 + i],
+                        poly.winding(i as f64 + 0.5, j as f64 + 0.5),
+                        "{pts:?} {i} {j}"
+                    );
                 }
             }
         }

@@ -5,7 +5,7 @@
 //!
 //! * [`test_scene`]: the polygon test scene on 400 x 240 (triangles of 1 to 200 px, a
 //!   concave comb, a self-intersecting star drawn with both fill rules, thin needles, a
-//!   fan, polygons clipped by the viewport and one far beyond the guard band).
+//!   fan, polygons clipped by the viewport and one reaching far beyond the guard band).
 //! * [`bench_triangles`]: the fixed benchmark set of triangles on 400 x 240 with integer
 //!   pixel-centre vertices (so that embedded-graphics can draw the same triangles).
 //! * [`sized_triangles`]: triangles of one size, for the scaling table.
@@ -29,7 +29,11 @@ pub struct XorShift64(u64);
 impl XorShift64 {
     /// A generator from a seed (0 is replaced by a fixed non-zero constant).
     pub fn new(seed: u64) -> Self {
-        Self(if seed == 0 { 0x9E37_79B9_7F4A_7C15 } else { seed })
+        Self(if seed == 0 {
+            0x9E37_79B9_7F4A_7C15
+        } else {
+            seed
+        })
     }
 
     /// Next 64 random bits.
@@ -173,13 +177,23 @@ pub fn test_scene() -> Vec<ScenePolygon> {
         .collect();
     tris.sort_by(|a, b| b.0.total_cmp(&a.0));
     for (i, (_, p)) in tris.into_iter().enumerate() {
-        s.push(ScenePolygon::new("triangle", p, FillRule::EvenOdd, i % 3 != 2));
+        s.push(ScenePolygon::new(
+            "triangle",
+            p,
+            FillRule::EvenOdd,
+            i % 3 != 2,
+        ));
     }
 
     // A concave comb (4 teeth), with one slanted side.
     let mut c = comb(206.25, 10.5, 270.75, 98.25, 4, 22.0);
     c[1].0 += 6.0; // slant the right end of the bar
-    s.push(ScenePolygon::new("concave comb", c, FillRule::EvenOdd, true));
+    s.push(ScenePolygon::new(
+        "concave comb",
+        c,
+        FillRule::EvenOdd,
+        true,
+    ));
 
     // Self-intersecting pentagram {5/2}: even-odd leaves the centre empty, non-zero fills it.
     s.push(ScenePolygon::new(
@@ -203,7 +217,12 @@ pub fn test_scene() -> Vec<ScenePolygon> {
             (x + size * 0.5, 118.1),
             (x + size, 118.0 + size * 0.8),
         ];
-        s.push(ScenePolygon::new("tiny triangle", p, FillRule::EvenOdd, true));
+        s.push(ScenePolygon::new(
+            "tiny triangle",
+            p,
+            FillRule::EvenOdd,
+            true,
+        ));
         x += size + 3.0;
     }
 
@@ -217,13 +236,18 @@ pub fn test_scene() -> Vec<ScenePolygon> {
             (fx + fr * a0.cos(), fy + fr * a0.sin()),
             (fx + fr * a1.cos(), fy + fr * a1.sin()),
         ];
-        s.push(ScenePolygon::new("fan triangle", p, FillRule::EvenOdd, i % 2 == 0));
+        s.push(ScenePolygon::new(
+            "fan triangle",
+            p,
+            FillRule::EvenOdd,
+            i % 2 == 0,
+        ));
     }
 
     // Thin needles: one nearly vertical, one nearly horizontal, a fraction of a pixel wide.
     s.push(ScenePolygon::new(
         "needle",
-        vec![(288.5, 8.0), (291.25, 228.0), (291.5625, 227.9375)],
+        vec![(288.5, 8.0), (291.25, 228.0), (292.0, 227.5)],
         FillRule::EvenOdd,
         true,
     ));
@@ -243,14 +267,15 @@ pub fn test_scene() -> Vec<ScenePolygon> {
     ));
     s.push(ScenePolygon::new(
         "clipped",
-        vec![(380.0, -15.0), (420.0, 4.0), (396.0, 12.5)],
+        vec![(296.0, -15.0), (330.0, 2.0), (312.0, 11.5)],
         FillRule::EvenOdd,
         true,
     ));
-    // Far beyond the guard band (16384 px): only its tip reaches into the frame.
+    // Far beyond the guard band (16384 px): a corner of it fills the top-right corner of
+    // the frame (x > ~378, y < ~14), with a slanted left edge and a nearly flat bottom.
     s.push(ScenePolygon::new(
         "beyond guard band",
-        vec![(372.0, -20000.0), (379.5, -20000.0), (376.25, 6.0)],
+        vec![(378.5, -20000.0), (30000.0, 4.25), (377.75, 14.5)],
         FillRule::EvenOdd,
         true,
     ));
@@ -340,10 +365,7 @@ pub fn large_polygons() -> Vec<(&'static str, Vec<(f64, f64)>)> {
             q(comb(2.25, 2.5, 397.75, 237.5, 32, 20.0)),
         ),
         ("pentagram r=120", q(star(200.3, 126.2, 120.0, 5, 2))),
-        (
-            "star, 100 points",
-            q(spiky(200.3, 120.2, 118.0, 70.0, 100)),
-        ),
+        ("star, 100 points", q(spiky(200.3, 120.2, 118.0, 70.0, 100))),
     ]
 }
 
@@ -354,10 +376,7 @@ mod tests {
     #[test]
     fn deterministic() {
         assert_eq!(bench_triangles(), bench_triangles());
-        assert_eq!(
-            format!("{:?}", test_scene()),
-            format!("{:?}", test_scene())
-        );
+        assert_eq!(format!("{:?}", test_scene()), format!("{:?}", test_scene()));
     }
 
     #[test]

@@ -7,7 +7,7 @@
 
 mod support;
 
-use host_tests::random::{polygon, RawPolygon, Rng, Shape};
+use host_tests::random::{far_polygon, polygon, RawPolygon, Rng, Shape};
 use host_tests::reference::{Polygon, Rule};
 use support::{check, minimize, Filler};
 
@@ -20,28 +20,52 @@ struct Batch {
 
 /// The reference coverage of `p` under `rule` on a `width x height` frame.
 fn reference(p: &RawPolygon, rule: Rule, width: u16, height: u16) -> Vec<bool> {
-    Polygon::new(&p.to_f64(), f64::from(width.max(height))).rasterize(rule, u32::from(width), u32::from(height))
+    Polygon::new(&p.to_f64(), f64::from(width.max(height))).rasterize(
+        rule,
+        u32::from(width),
+        u32::from(height),
+    )
 }
 
 /// Compares `count` random polygons with the reference under both rules.
 /// `frame` picks the frame size of each polygon.
-fn compare(seed: u64, count: usize, s_values: &[u32], frame: impl Fn(&mut Rng) -> (u16, u16)) -> Batch {
+fn compare(
+    seed: u64,
+    count: usize,
+    s_values: &[u32],
+    frame: impl Fn(&mut Rng) -> (u16, u16),
+) -> Batch {
     let mut rng = Rng::new(seed);
-    let mut batch = Batch { polygons: 0, pixels: 0, failures: Vec::new() };
+    let mut batch = Batch {
+        polygons: 0,
+        pixels: 0,
+        failures: Vec::new(),
+    };
     for _ in 0..count {
         let (w, h) = frame(&mut rng);
         let s = rng.pick(s_values);
         let shape = rng.pick(&Shape::ALL);
         let p = polygon(&mut rng, shape, s, u32::from(w), u32::from(h));
-        let wind = Polygon::new(&p.to_f64(), f64::from(w.max(h))).winding_map(u32::from(w), u32::from(h));
+        let wind =
+            Polygon::new(&p.to_f64(), f64::from(w.max(h))).winding_map(u32::from(w), u32::from(h));
         for rule in Rule::ALL {
             let expected: Vec<bool> = wind.iter().map(|&n| rule.inside(n)).collect();
             if let Err(msg) = check(&p, Filler::Scan(rule), w, h, &expected) {
-                let small = minimize(&p, |q| check(q, Filler::Scan(rule), w, h, &reference(q, rule, w, h)).is_err());
-                let small_msg = check(&small, Filler::Scan(rule), w, h, &reference(&small, rule, w, h))
-                    .err()
-                    .unwrap_or_default();
-                batch.failures.push(format!("{shape:?}: {msg}\n    minimal: {small_msg}"));
+                let small = minimize(&p, |q| {
+                    check(q, Filler::Scan(rule), w, h, &reference(q, rule, w, h)).is_err()
+                });
+                let small_msg = check(
+                    &small,
+                    Filler::Scan(rule),
+                    w,
+                    h,
+                    &reference(&small, rule, w, h),
+                )
+                .err()
+                .unwrap_or_default();
+                batch
+                    .failures
+                    .push(format!("{shape:?}: {msg}\n    minimal: {small_msg}"));
             }
             batch.pixels += expected.len();
         }
@@ -62,7 +86,13 @@ fn report(name: &str, batch: &Batch) {
         "{name}: {} of {} polygon/rule pairs differ from the reference; first ones:\n{}",
         batch.failures.len(),
         2 * batch.polygons,
-        batch.failures.iter().take(5).cloned().collect::<Vec<_>>().join("\n")
+        batch
+            .failures
+            .iter()
+            .take(5)
+            .cloned()
+            .collect::<Vec<_>>()
+            .join("\n")
     );
 }
 
@@ -97,4 +127,30 @@ fn random_polygons_match_reference_on_tiny_frames() {
         (1 + rng.below(24) as u16, 1 + rng.below(24) as u16)
     });
     report("tiny frames", &b);
+}
+
+/// Vertices far beyond the guard band (up to the i32 raw limit: 2^30.9 px at S=0, 2^22.9 px
+/// at S=8), with long edges crossing the frame; the reference evaluates them exactly.
+#[test]
+fn random_polygons_beyond_the_guard_band_match_reference() {
+    let b = compare_with(
+        0x5eed_fa00,
+        8_000,
+        &[0, 4, 8],
+        |rng| {
+            if rng.chance(0.8) {
+                (64, 64)
+            } else {
+                (400, 240)
+            }
+        },
+        |rng, s, w, h| {
+            let max_px = rng.pick(&[2e4, 1e6, 2f64.powf(30.9 - f64::from(s))]);
+            (
+                format!("far polygon up to {max_px:.0} px"),
+                far_polygon(rng, s, w, h, max_px),
+            )
+        },
+    );
+    report("beyond the guard band", &b);
 }

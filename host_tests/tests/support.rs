@@ -34,7 +34,15 @@ pub struct CountSink {
 impl CountSink {
     pub fn new(width: u16, height: u16) -> Self {
         let n = usize::from(width) * usize::from(height);
-        CountSink { width, height, counts: vec![0; n], stamp: vec![0; n], polygon: 1, spans: 0, flushes: 0 }
+        CountSink {
+            width,
+            height,
+            counts: vec![0; n],
+            stamp: vec![0; n],
+            polygon: 1,
+            spans: 0,
+            flushes: 0,
+        }
     }
 
     /// Starts a new polygon: writes after this may touch pixels of earlier polygons once.
@@ -65,7 +73,10 @@ impl SpanSink for CountSink {
     type Error = Infallible;
 
     fn viewport(&self) -> Viewport {
-        Viewport { width: self.width, height: self.height }
+        Viewport {
+            width: self.width,
+            height: self.height,
+        }
     }
 
     fn fill_span(&mut self, span: Span, color: BinaryColor) -> Result<(), Infallible> {
@@ -80,7 +91,12 @@ impl SpanSink for CountSink {
         let row = usize::from(span.y()) * usize::from(self.width);
         for x in span.x0()..span.x1() {
             let i = row + usize::from(x);
-            assert_ne!(self.stamp[i], self.polygon, "pixel ({x}, {}) written twice by one polygon", span.y());
+            assert_ne!(
+                self.stamp[i],
+                self.polygon,
+                "pixel ({x}, {}) written twice by one polygon",
+                span.y()
+            );
             self.stamp[i] = self.polygon;
             self.counts[i] += 1;
         }
@@ -109,20 +125,33 @@ pub enum Filler {
 
 /// Library points from raw fixed-point values, `S` chosen at run time.
 pub fn points<F: LeEqU32>(raw: &[(i32, i32)]) -> Vec<ScreenPoint<F>> {
-    raw.iter().map(|&(x, y)| ScreenPoint::<F>::from_bits(x, y)).collect()
+    raw.iter()
+        .map(|&(x, y)| ScreenPoint::<F>::from_bits(x, y))
+        .collect()
 }
 
-fn fill_typed<F: LeEqU32>(raw: &[(i32, i32)], filler: Filler, sink: &mut CountSink) -> Result<(), Error> {
+fn fill_typed<F: LeEqU32>(
+    raw: &[(i32, i32)],
+    filler: Filler,
+    sink: &mut CountSink,
+) -> Result<(), Error> {
     let pts = points::<F>(raw);
     sink.begin_polygon();
     match filler {
-        Filler::Scan(rule) => ScanConverter::<EDGES>::new().fill(&pts, fill_rule(rule), BinaryColor::On, sink),
+        Filler::Scan(rule) => {
+            ScanConverter::<EDGES>::new().fill(&pts, fill_rule(rule), BinaryColor::On, sink)
+        }
         Filler::Xor => XorFiller::<EDGES, WORDS>::new().fill(&pts, BinaryColor::On, sink),
     }
 }
 
 /// Draws the raw polygon with `s` sub-pixel bits (0..=12) into `sink`.
-pub fn fill_raw(s: u32, raw: &[(i32, i32)], filler: Filler, sink: &mut CountSink) -> Result<(), Error> {
+pub fn fill_raw(
+    s: u32,
+    raw: &[(i32, i32)],
+    filler: Filler,
+    sink: &mut CountSink,
+) -> Result<(), Error> {
     match s {
         0 => fill_typed::<U0>(raw, filler, sink),
         1 => fill_typed::<U1>(raw, filler, sink),
@@ -145,13 +174,22 @@ pub fn fill_raw(s: u32, raw: &[(i32, i32)], filler: Filler, sink: &mut CountSink
 pub fn render(p: &RawPolygon, filler: Filler, width: u16, height: u16) -> Vec<bool> {
     let mut sink = CountSink::new(width, height);
     fill_raw(p.s, &p.pts, filler, &mut sink).expect("fill failed");
-    assert_eq!(sink.flushes, 1, "flush must be called once at the end of the polygon");
+    assert_eq!(
+        sink.flushes, 1,
+        "flush must be called once at the end of the polygon"
+    );
     sink.covered()
 }
 
 /// Draws `p` with `filler` and compares with `expected`; `Err(description)` on any
 /// difference or panic (the sink's contract assertions panic).
-pub fn check(p: &RawPolygon, filler: Filler, width: u16, height: u16, expected: &[bool]) -> Result<(), String> {
+pub fn check(
+    p: &RawPolygon,
+    filler: Filler,
+    width: u16,
+    height: u16,
+    expected: &[bool],
+) -> Result<(), String> {
     let got = std::panic::catch_unwind(|| render(p, filler, width, height));
     match got {
         Ok(got) => {
@@ -168,7 +206,10 @@ pub fn check(p: &RawPolygon, filler: Filler, width: u16, height: u16, expected: 
                 .cloned()
                 .or_else(|| e.downcast_ref::<&str>().map(|s| s.to_string()))
                 .unwrap_or_default();
-            Err(format!("{} -- panicked: {msg}", describe(p, filler, width, height, &[])))
+            Err(format!(
+                "{} -- panicked: {msg}",
+                describe(p, filler, width, height, &[])
+            ))
         }
     }
 }
@@ -186,7 +227,13 @@ pub fn differences(expected: &[bool], got: &[bool], width: u16) -> Vec<(usize, u
 }
 
 /// A reproducible description of a failing case, for the report to the lead.
-pub fn describe(p: &RawPolygon, filler: Filler, width: u16, height: u16, diffs: &[(usize, usize, bool, bool)]) -> String {
+pub fn describe(
+    p: &RawPolygon,
+    filler: Filler,
+    width: u16,
+    height: u16,
+    diffs: &[(usize, usize, bool, bool)],
+) -> String {
     let shown: Vec<String> = diffs
         .iter()
         .take(8)

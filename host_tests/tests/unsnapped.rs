@@ -56,20 +56,31 @@ fn run(s: u32, seed: u64, count: usize, width: u16, height: u16) -> Stats {
         let rule = rng.pick(&Rule::ALL);
         let true_pts = unsnapped_polygon(&mut rng, shape, u32::from(width), u32::from(height));
         let raw = snap_dyn(s, &true_pts);
-        let snapped = RawPolygon { s, pts: raw.clone() };
+        let snapped = RawPolygon {
+            s,
+            pts: raw.clone(),
+        };
         // from_f64 rounds to the nearest grid value.
         for (&(x, y), &(sx, sy)) in true_pts.iter().zip(&snapped.to_f64()) {
             let half = 0.5f64.powi(s as i32 + 1);
-            assert!((x - sx).abs() <= half && (y - sy).abs() <= half, "from_f64({x}, {y}) = ({sx}, {sy}) at S={s}");
+            assert!(
+                (x - sx).abs() <= half && (y - sy).abs() <= half,
+                "from_f64({x}, {y}) = ({sx}, {sy}) at S={s}"
+            );
         }
         // On the snapped vertices the library is exact.
         let extent = f64::from(width.max(height));
-        let on_snapped = Polygon::new(&snapped.to_f64(), extent).rasterize(rule, u32::from(width), u32::from(height));
+        let on_snapped = Polygon::new(&snapped.to_f64(), extent).rasterize(
+            rule,
+            u32::from(width),
+            u32::from(height),
+        );
         if let Err(msg) = check(&snapped, Filler::Scan(rule), width, height, &on_snapped) {
             panic!("library differs from the reference on snapped vertices: {msg}");
         }
         // Against the true geometry, only pixels near a true edge may differ.
-        let truth = Polygon::new(&true_pts, extent).rasterize(rule, u32::from(width), u32::from(height));
+        let truth =
+            Polygon::new(&true_pts, extent).rasterize(rule, u32::from(width), u32::from(height));
         let mut sink = CountSink::new(width, height);
         fill_raw(s, &raw, Filler::Scan(rule), &mut sink).expect("fill");
         for (x, y, want, got) in differences(&truth, &sink.covered(), width) {
@@ -108,8 +119,14 @@ fn snapping_errors_stay_within_the_snapping_distance_of_true_edges() {
     // More sub-pixel bits, fewer errors: S=0 must err somewhere in 4000 random polygons,
     // and S=12 much less often than S=0.
     let (d0, d12) = (totals[0].1, totals[4].1);
-    assert!(d0 > 0, "S=0 snapping must change some pixels of random polygons");
-    assert!(d12 * 20 < d0, "S=12 ({d12}) should err far less often than S=0 ({d0})");
+    assert!(
+        d0 > 0,
+        "S=0 snapping must change some pixels of random polygons"
+    );
+    assert!(
+        d12 * 20 < d0,
+        "S=12 ({d12}) should err far less often than S=0 ({d0})"
+    );
 }
 
 #[test]

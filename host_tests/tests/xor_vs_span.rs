@@ -26,24 +26,40 @@ fn compare(seed: u64, count: usize, width: u16, height: u16) {
         let expected = reference(&p);
         pixels += expected.len();
         if let Err(msg) = check(&p, Filler::Xor, width, height, &expected) {
-            let small = minimize(&p, |q| check(q, Filler::Xor, width, height, &reference(q)).is_err());
-            let small_msg = check(&small, Filler::Xor, width, height, &reference(&small)).err().unwrap_or_default();
+            let small = minimize(&p, |q| {
+                check(q, Filler::Xor, width, height, &reference(q)).is_err()
+            });
+            let small_msg = check(&small, Filler::Xor, width, height, &reference(&small))
+                .err()
+                .unwrap_or_default();
             failures.push(format!("{shape:?}: {msg}\n    minimal: {small_msg}"));
             continue;
         }
         // Same pixels as the scan converter (which span_vs_reference checks in depth).
         let xor = render(&p, Filler::Xor, width, height);
-        let scan = std::panic::catch_unwind(|| render(&p, Filler::Scan(Rule::EvenOdd), width, height));
+        let scan =
+            std::panic::catch_unwind(|| render(&p, Filler::Scan(Rule::EvenOdd), width, height));
         if scan.as_ref().map_or(true, |scan| *scan != xor) {
-            failures.push(format!("XorFiller and ScanConverter(EvenOdd) differ: S={} {:?}", p.s, p.pts));
+            failures.push(format!(
+                "XorFiller and ScanConverter(EvenOdd) differ: S={} {:?}",
+                p.s, p.pts
+            ));
         }
     }
-    println!("XorFiller on {width}x{height}: {count} polygons, {pixels} pixels compared, {} failures", failures.len());
+    println!(
+        "XorFiller on {width}x{height}: {count} polygons, {pixels} pixels compared, {} failures",
+        failures.len()
+    );
     assert!(
         failures.is_empty(),
         "{} of {count} polygons differ; first ones:\n{}",
         failures.len(),
-        failures.iter().take(5).cloned().collect::<Vec<_>>().join("\n")
+        failures
+            .iter()
+            .take(5)
+            .cloned()
+            .collect::<Vec<_>>()
+            .join("\n")
     );
 }
 
@@ -60,7 +76,10 @@ fn xor_filler_equals_even_odd_scan_converter_and_reference_on_400x240() {
 /// Widths that are not a multiple of the 32-bit row word, and 1-pixel frames.
 #[test]
 fn xor_filler_equals_reference_on_odd_widths() {
-    for (i, (w, h)) in [(1, 1), (31, 7), (33, 9), (63, 5), (65, 12), (97, 3)].into_iter().enumerate() {
+    for (i, (w, h)) in [(1, 1), (31, 7), (33, 9), (63, 5), (65, 12), (97, 3)]
+        .into_iter()
+        .enumerate()
+    {
         compare(0x0e0e_0001 + i as u64, 2_000, w, h);
     }
 }

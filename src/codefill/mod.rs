@@ -69,7 +69,7 @@ impl<const EDGES: usize, const WORDS: usize> XorFiller<EDGES, WORDS> {
             });
         }
         self.walker.begin(points, viewport).map_err(Error::widen)?;
-        while let Some((y, crossings)) = self.walker.next_row(points) {
+        while let Some((y, crossings)) = self.walker.next_row(points, false) {
             let mut first = words;
             let mut last = 0;
             let mut toggled = 0usize;

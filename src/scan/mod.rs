@@ -93,22 +93,10 @@ impl<const EDGES: usize> ScanConverter<EDGES> {
     ) -> Result<(), Error<K::Error>> {
         let viewport = sink.viewport();
         self.walker.begin(points, viewport).map_err(Error::widen)?;
-        while let Some((y, crossings)) = self.walker.next_row(points) {
-            sort_crossings(crossings);
+        while let Some((y, crossings)) = self.walker.next_row(points, true) {
             emit_row(y, crossings, rule, viewport.width, color, sink).map_err(Error::Target)?;
         }
         sink.flush().map_err(Error::Target)
-    }
-}
-
-/// Insertion sort: rows hold few crossings, mostly already in order.
-fn sort_crossings(crossings: &mut [Crossing]) {
-    for i in 1..crossings.len() {
-        let mut j = i;
-        while j > 0 && crossings[j - 1].x > crossings[j].x {
-            crossings.swap(j - 1, j);
-            j -= 1;
-        }
     }
 }
 

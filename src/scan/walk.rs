@@ -99,29 +99,25 @@ impl<const N: usize> PolygonWalker<N> {
         self.active.clear();
         self.crossings.clear();
         self.next = 0;
-        let needed = edge_lines(points)
-            .filter(|e| e.clip(s, viewport) != Clipped::Gone)
-            .count();
-        if needed > N {
-            return Err(Error::CapacityExceeded {
-                needed,
-                capacity: N,
-            });
-        }
         if points.iter().all(ScreenPoint::in_guard_band) {
             self.mode = Mode::Narrow;
+            let mut needed = 0;
             for line in edge_lines(points) {
                 if let Some(edge) = Edge::new(&line, line.clip(s, viewport), s) {
-                    // Cannot fail: at most `needed <= N` edges survive clipping.
+                    needed += 1;
+                    // A full table keeps counting, to report the size needed.
                     let _ = self.table.edges.push(edge);
                 }
             }
-            self.table.edges.sort_unstable_by_key(|e| e.first);
+            check_capacity(needed, N)?;
+            sort_by_key(&mut self.table.edges, |e| e.first);
             self.row = self.table.edges.first().map_or(0, |e| e.first);
         } else {
+            let mut needed = 0;
             let mut rows = RowRange { first: 0, end: 0 };
             for line in edge_lines(points) {
                 if let Clipped::Left(r) | Clipped::Rows(r) = line.clip(s, viewport) {
+                    needed += 1;
                     rows = if rows.first >= rows.end {
                         r
                     } else {
@@ -132,26 +128,35 @@ impl<const N: usize> PolygonWalker<N> {
                     };
                 }
             }
+            check_capacity(needed, N)?;
             self.row = rows.first;
             self.mode = Mode::Wide(rows);
         }
         Ok(())
     }
 
-    /// The next row that has crossings, and its crossings in no particular order;
-    /// `None` when the polygon is done. `points` must be the slice given to `begin`.
+    /// The next row that has crossings, and its crossings, sorted by `x` when
+    /// `sorted` (the order of an XOR fill does not matter); `None` when the polygon
+    /// is done. `points` must be the slice given to `begin`.
     pub fn next_row<Frac: LeEqU32>(
         &mut self,
         points: &[ScreenPoint<Frac>],
+        sorted: bool,
     ) -> Option<(u16, &mut [Crossing])> {
         self.crossings.clear();
         match self.mode {
-            Mode::Narrow => self.next_narrow(),
-            Mode::Wide(rows) => self.next_wide(points, rows),
+            Mode::Narrow => self.next_narrow(sorted),
+            Mode::Wide(rows) => {
+                let row = self.next_wide(points, rows)?;
+                if sorted {
+                    sort_by_key(&mut self.crossings, |c| c.x);
+                }
+                Some((row, &mut self.crossings[..]))
+            }
         }
     }
 
-    fn next_narrow(&mut self) -> Option<(u16, &mut [Crossing])> {
+    fn next_narrow(&mut self, sorted: bool) -> Option<(u16, &mut [Crossing])> {
         let edges = &mut self.table.edges;
         let row = self.row;
         self.active
@@ -182,16 +187,30 @@ impl<const N: usize> PolygonWalker<N> {
                 edge.step();
             }
         }
+        if sorted {
+            // Sort the active list along with the crossings: edges keep their order
+            // from row to row, so this insertion sort is linear but where edges cross.
+            let (active, crossings) = (&mut self.active[..], &mut self.crossings[..]);
+            for i in 1..crossings.len().min(active.len()) {
+                let mut j = i;
+                while j > 0 && crossings[j - 1].x > crossings[j].x {
+                    crossings.swap(j - 1, j);
+                    active.swap(j - 1, j);
+                    j -= 1;
+                }
+            }
+        }
         self.row += 1;
         // Rows lie in [0, height), height <= 8192.
         Some((row as u16, &mut self.crossings[..]))
     }
 
+    /// Fills `crossings` for the next wide-mode row that has any; returns the row.
     fn next_wide<Frac: LeEqU32>(
         &mut self,
         points: &[ScreenPoint<Frac>],
         rows: RowRange,
-    ) -> Option<(u16, &mut [Crossing])> {
+    ) -> Option<u16> {
         let (s, viewport) = (self.s, self.viewport);
         while self.row < rows.end {
             let row = self.row;
@@ -209,9 +228,33 @@ impl<const N: usize> PolygonWalker<N> {
                 });
             }
             if !self.crossings.is_empty() {
-                return Some((row as u16, &mut self.crossings[..]));
+                // Rows lie in [0, height), height <= 8192.
+                return Some(row as u16);
             }
         }
         None
+    }
+}
+
+/// `Err(CapacityExceeded)` when `needed` edges do not fit `capacity`.
+fn check_capacity(needed: usize, capacity: usize) -> Result<(), Error> {
+    if needed > capacity {
+        return Err(Error::CapacityExceeded { needed, capacity });
+    }
+    Ok(())
+}
+
+/// Insertion sort for the short lists of one polygon, the library sort beyond.
+fn sort_by_key<T, K: Ord>(items: &mut [T], key: impl Fn(&T) -> K) {
+    if items.len() > 16 {
+        items.sort_unstable_by_key(key);
+        return;
+    }
+    for i in 1..items.len() {
+        let mut j = i;
+        while j > 0 && key(&items[j - 1]) > key(&items[j]) {
+            items.swap(j - 1, j);
+            j -= 1;
+        }
     }
 }

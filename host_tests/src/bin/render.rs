@@ -17,11 +17,13 @@ use std::time::Instant;
 
 use embedded_graphics::pixelcolor::BinaryColor;
 use fixed::types::extra::U4;
-use host_tests::image::{count_diff, count_set, fnv1a64, packed_pixel, write_packed_png, write_rgb_png};
+use host_tests::image::{
+    count_diff, count_set, fnv1a64, packed_pixel, write_packed_png, write_rgb_png,
+};
 use host_tests::scenes::{test_scene, to_screen, ScenePolygon, HEIGHT, WIDTH};
 use pbuffer::{
-    packed_len, FillRule, PackedFramebuffer, ScanConverter, ScreenPoint, Span, SpanSink,
-    Viewport, XorFiller,
+    packed_len, FillRule, PackedFramebuffer, ScanConverter, ScreenPoint, Span, SpanSink, Viewport,
+    XorFiller,
 };
 
 /// Sub-pixel bits of the vertices.
@@ -213,7 +215,12 @@ fn run(path: Path, scene: &[Prepared], frames: u32) -> Result<Figures, String> {
 }
 
 fn default_out() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../docs/scene.png")
+    let manifest = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    manifest
+        .parent()
+        .unwrap_or(manifest)
+        .join("docs")
+        .join("scene.png")
 }
 
 fn kinds(scene: &[ScenePolygon]) -> String {
@@ -344,12 +351,7 @@ fn main() -> ExitCode {
         format!("{hash:016x}"),
         format!("{:016x}", fnv1a64(b.frame.as_bytes()))
     );
-    println!(
-        "  {:<16}{:>22}{:>22}",
-        "time / frame",
-        time(&a),
-        time(&b)
-    );
+    println!("  {:<16}{:>22}{:>22}", "time / frame", time(&a), time(&b));
     println!();
     if nonzero > 0 {
         println!(
