@@ -102,15 +102,19 @@ pub enum Shape {
     Concave,
     /// 4..12 random points in a box: usually self-intersecting.
     SelfIntersecting,
+    /// 3..10 points of a coarse lattice (a few pixels, step 1/2 px or 1 px): repeated
+    /// vertices, collinear and overlapping edges, edges through centres.
+    Lattice,
 }
 
 impl Shape {
     /// All shapes.
-    pub const ALL: [Shape; 4] = [
+    pub const ALL: [Shape; 5] = [
         Shape::Triangle,
         Shape::Quad,
         Shape::Concave,
         Shape::SelfIntersecting,
+        Shape::Lattice,
     ];
 }
 
@@ -145,6 +149,19 @@ pub fn polygon(rng: &mut Rng, shape: Shape, s: u32, width: u32, height: u32) -> 
         Shape::SelfIntersecting => {
             let n = 4 + rng.below(9);
             (0..n).map(|_| random_in_box(rng)).collect()
+        }
+        Shape::Lattice => {
+            let n = 3 + rng.below(8);
+            let step = if s >= 1 && rng.chance(0.5) { 0.5 } else { 1.0 };
+            let cells = 1 + rng.below(6);
+            let origin = ((cx - size / 2.0).floor(), (cy - size / 2.0).floor());
+            (0..n)
+                .map(|_| {
+                    let x = origin.0 + step * rng.below(cells + 1) as f64;
+                    let y = origin.1 + step * rng.below(cells + 1) as f64;
+                    (snap_raw(x, s), snap_raw(y, s))
+                })
+                .collect()
         }
         Shape::Concave => {
             let n = 5 + rng.below(12) as usize;
@@ -195,7 +212,8 @@ pub fn far_polygon(rng: &mut Rng, s: u32, width: u32, height: u32, max_px: f64) 
 
 /// A random polygon given in full f64 precision (not snapped), for the snapping-error test.
 pub fn unsnapped_polygon(rng: &mut Rng, shape: Shape, width: u32, height: u32) -> Vec<(f64, f64)> {
-    // Generate on a very fine grid (2^-40) and convert: full-precision values in practice.
+    // A polygon of the given shape with integer vertices, each moved by a uniform random
+    // offset in [-0.5, 0.5)^2: 53-bit random fractions, never on any 1/2^S grid in practice.
     let p = polygon(rng, shape, 0, width, height);
     p.pts
         .iter()

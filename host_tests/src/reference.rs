@@ -31,6 +31,9 @@
 
 use std::cmp::Ordering;
 
+/// A point `(x, y)` in pixels.
+pub type Point = (f64, f64);
+
 /// Fill rule of the reference (independent of the library's `FillRule`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Rule {
@@ -121,6 +124,12 @@ impl Polygon {
         self.fast
     }
 
+    /// The same polygon evaluated with integer arithmetic only (to cross-check the paths).
+    pub fn with_integer_arithmetic(mut self) -> Self {
+        self.fast = false;
+        self
+    }
+
     /// The edges `(a, b)` in order, closing edge included.
     fn edges(&self) -> impl Iterator<Item = ((f64, f64), (f64, f64))> + '_ {
         let n = self.pts.len();
@@ -197,7 +206,7 @@ impl Polygon {
 
 /// For an edge `a -> b` and a row at `py`: `Some((lo, hi, dir))` if the perturbed ray
 /// at `py + e^2` crosses it (`lo.y <= py < hi.y`), with `dir` = +1 going down, -1 up.
-fn spans_row(a: (f64, f64), b: (f64, f64), py: f64) -> Option<((f64, f64), (f64, f64), i32)> {
+fn spans_row(a: Point, b: Point, py: f64) -> Option<(Point, Point, i32)> {
     let (lo, hi, dir) = match a.1.partial_cmp(&b.1)? {
         Ordering::Less => (a, b, 1),
         Ordering::Greater => (b, a, -1),
@@ -357,6 +366,32 @@ mod tests {
     }
 
     #[test]
+    fn wide_products_compare_exactly() {
+        let t = 1i128 << 100;
+        // t*t - (t+1)(t-1) = 1
+        assert_eq!(
+            exact::sign_of_product_difference(t, t, t + 1, t - 1),
+            Ordering::Greater
+        );
+        assert_eq!(
+            exact::sign_of_product_difference(t + 1, t - 1, t, t),
+            Ordering::Less
+        );
+        assert_eq!(
+            exact::sign_of_product_difference(-t, t, t, -t),
+            Ordering::Equal
+        );
+        assert_eq!(
+            exact::sign_of_product_difference(-t, t, -t - 1, t - 1),
+            Ordering::Less
+        );
+        assert_eq!(
+            exact::sign_of_product_difference(0, t, -t, t),
+            Ordering::Greater
+        );
+    }
+
+    #[test]
     fn exact_and_fast_paths_agree_on_snapped_values() {
         let mut state = 0x1234_5678_9abc_def0u64;
         let mut next = || {
@@ -472,6 +507,45 @@ mod tests {
             assert!(rasterize(&line, rule, 8, 8).iter().all(|&c| !c));
             assert!(rasterize(&point, rule, 8, 8).iter().all(|&c| !c));
         }
+    }
+
+    #[test]
+    fn integer_path_agrees_with_f64_where_f64_is_clearly_right() {
+        // Unsnapped values: whenever the f64 determinant is far from zero relative to its
+        // rounding error, the exact sign must agree with it.
+        let mut state = 7u64;
+        let mut unit = || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut checked = 0;
+        for _ in 0..200_000 {
+            let mut v = || 100.0 * unit() - 20.0;
+            let (a, b, p) = ((v(), v()), (v(), v()), (v(), v()));
+            let (l, r) = ((b.0 - a.0) * (p.1 - a.1), (b.1 - a.1) * (p.0 - a.0));
+            if (l - r).abs() > 1e-9 * (l.abs() + r.abs()) {
+                assert_eq!(exact::det_sign(a, b, p), (l - r).partial_cmp(&0.0).unwrap());
+                checked += 1;
+            }
+        }
+        assert!(checked > 190_000);
+    }
+
+    #[test]
+    fn integer_path_rasterizes_like_the_f64_path_on_snapped_polygons() {
+        let pts = [
+            (0.5, 0.5),
+            (30.25, 3.5),
+            (12.0, 29.5),
+            (2.5, 17.0),
+            (20.5, 9.75),
+        ];
+        let fast = Polygon::new(&pts, 32.0);
+        assert!(fast.uses_fast_path());
+        let slow = fast.clone().with_integer_arithmetic();
+        assert_eq!(fast.winding_map(32, 32), slow.winding_map(32, 32));
     }
 
     #[test]

@@ -14,6 +14,8 @@ use support::{check, minimize, Filler};
 /// Totals of one batch.
 struct Batch {
     polygons: usize,
+    /// Polygons that cover at least one pixel.
+    nonempty: usize,
     pixels: usize,
     failures: Vec<String>,
 }
@@ -35,17 +37,31 @@ fn compare(
     s_values: &[u32],
     frame: impl Fn(&mut Rng) -> (u16, u16),
 ) -> Batch {
+    compare_with(seed, count, s_values, frame, |rng, s, w, h| {
+        let shape = rng.pick(&Shape::ALL);
+        (format!("{shape:?}"), polygon(rng, shape, s, w, h))
+    })
+}
+
+/// Like [`compare`], with polygons from `make(rng, s, width, height) -> (label, polygon)`.
+fn compare_with(
+    seed: u64,
+    count: usize,
+    s_values: &[u32],
+    frame: impl Fn(&mut Rng) -> (u16, u16),
+    make: impl Fn(&mut Rng, u32, u32, u32) -> (String, RawPolygon),
+) -> Batch {
     let mut rng = Rng::new(seed);
     let mut batch = Batch {
         polygons: 0,
+        nonempty: 0,
         pixels: 0,
         failures: Vec::new(),
     };
     for _ in 0..count {
         let (w, h) = frame(&mut rng);
         let s = rng.pick(s_values);
-        let shape = rng.pick(&Shape::ALL);
-        let p = polygon(&mut rng, shape, s, u32::from(w), u32::from(h));
+        let (shape, p) = make(&mut rng, s, u32::from(w), u32::from(h));
         let wind =
             Polygon::new(&p.to_f64(), f64::from(w.max(h))).winding_map(u32::from(w), u32::from(h));
         for rule in Rule::ALL {
@@ -65,19 +81,21 @@ fn compare(
                 .unwrap_or_default();
                 batch
                     .failures
-                    .push(format!("{shape:?}: {msg}\n    minimal: {small_msg}"));
+                    .push(format!("{shape}: {msg}\n    minimal: {small_msg}"));
             }
             batch.pixels += expected.len();
         }
         batch.polygons += 1;
+        batch.nonempty += usize::from(wind.iter().any(|&n| n != 0));
     }
     batch
 }
 
 fn report(name: &str, batch: &Batch) {
     println!(
-        "{name}: {} polygons x 2 rules, {} pixels compared, {} failures",
+        "{name}: {} polygons ({} reach the frame) x 2 rules, {} pixels compared, {} failures",
         batch.polygons,
+        batch.nonempty,
         batch.pixels,
         batch.failures.len()
     );
@@ -98,32 +116,32 @@ fn report(name: &str, batch: &Batch) {
 
 #[test]
 fn random_polygons_with_integer_vertices_match_reference_on_64x64() {
-    let b = compare(0x5eed_0000, 30_000, &[0], |_| (64, 64));
+    let b = compare(0x5eed_0000, 60_000, &[0], |_| (64, 64));
     report("S=0, 64x64", &b);
 }
 
 #[test]
 fn random_polygons_with_4_subpixel_bits_match_reference_on_64x64() {
-    let b = compare(0x5eed_0004, 30_000, &[4], |_| (64, 64));
+    let b = compare(0x5eed_0004, 60_000, &[4], |_| (64, 64));
     report("S=4, 64x64", &b);
 }
 
 #[test]
 fn random_polygons_with_8_subpixel_bits_match_reference_on_64x64() {
-    let b = compare(0x5eed_0008, 30_000, &[8], |_| (64, 64));
+    let b = compare(0x5eed_0008, 60_000, &[8], |_| (64, 64));
     report("S=8, 64x64", &b);
 }
 
 #[test]
 fn random_polygons_match_reference_on_400x240() {
-    let b = compare(0x5eed_0400, 6_000, &[0, 4, 8], |_| (400, 240));
+    let b = compare(0x5eed_0400, 12_000, &[0, 4, 8], |_| (400, 240));
     report("S in {0,4,8}, 400x240", &b);
 }
 
 /// Frames of 1..=24 px per side, where most polygons cross the borders.
 #[test]
 fn random_polygons_match_reference_on_tiny_frames() {
-    let b = compare(0x5eed_0001, 10_000, &[0, 1, 4, 8, 12], |rng| {
+    let b = compare(0x5eed_0001, 20_000, &[0, 1, 4, 8, 12], |rng| {
         (1 + rng.below(24) as u16, 1 + rng.below(24) as u16)
     });
     report("tiny frames", &b);
@@ -135,7 +153,7 @@ fn random_polygons_match_reference_on_tiny_frames() {
 fn random_polygons_beyond_the_guard_band_match_reference() {
     let b = compare_with(
         0x5eed_fa00,
-        8_000,
+        20_000,
         &[0, 4, 8],
         |rng| {
             if rng.chance(0.8) {
@@ -153,4 +171,38 @@ fn random_polygons_beyond_the_guard_band_match_reference() {
         },
     );
     report("beyond the guard band", &b);
+}
+
+/// Minimal polygons that tell a correct tie rule from one that treats a centre exactly on
+/// an edge the other way (found by flipping the reference's `c <= 0` test to `c < 0` and
+/// letting the random comparison above shrink its failures). Each must match exactly.
+#[test]
+fn centres_exactly_on_edges_follow_the_top_left_rule() {
+    // (S, raw vertices, width, height)
+    type Case = (u32, [(i32, i32); 3], u16, u16);
+    let cases: [Case; 8] = [
+        (1, [(1, 17), (3, 12), (10, 11)], 5, 15),
+        (1, [(37, 1), (39, 0), (38, 2)], 19, 1),
+        (12, [(17436, 64818), (13679, 61104), (14336, 63488)], 4, 17),
+        (4, [(888, 720), (872, 768), (888, 760)], 64, 64),
+        (4, [(288, 656), (272, 640), (288, 616)], 64, 64),
+        (4, [(888, 488), (1428, 536), (856, 432)], 64, 64),
+        (8, [(9984, 6528), (9472, 5504), (8439, 5028)], 64, 64),
+        (8, [(2176, 14720), (2304, 14848), (2304, 14720)], 64, 64),
+    ];
+    for (s, pts, w, h) in cases {
+        let p = RawPolygon {
+            s,
+            pts: pts.to_vec(),
+        };
+        for rule in Rule::ALL {
+            let expected = reference(&p, rule, w, h);
+            if let Err(msg) = check(&p, Filler::Scan(rule), w, h, &expected) {
+                panic!("{msg}");
+            }
+            if let Err(msg) = check(&p, Filler::Xor, w, h, &reference(&p, Rule::EvenOdd, w, h)) {
+                panic!("{msg}");
+            }
+        }
+    }
 }

@@ -131,7 +131,7 @@ fn run(seed: u64, count: usize, kinds: &[Kind], filler: Filler, width: u16, heig
 fn triangle_fans_cover_each_inside_pixel_once_with_scan_converter() {
     run(
         0xfa40_0001,
-        2_600,
+        5_000,
         &[Kind::Fan],
         Filler::Scan(Rule::EvenOdd),
         64,
@@ -143,7 +143,7 @@ fn triangle_fans_cover_each_inside_pixel_once_with_scan_converter() {
 fn triangulated_grids_cover_each_inside_pixel_once_with_scan_converter() {
     run(
         0x6a1d_0001,
-        2_600,
+        5_000,
         &[Kind::Grid],
         Filler::Scan(Rule::NonZero),
         64,
@@ -153,27 +153,31 @@ fn triangulated_grids_cover_each_inside_pixel_once_with_scan_converter() {
 
 #[test]
 fn triangle_fans_cover_each_inside_pixel_once_with_xor_filler() {
-    run(0xfa40_0002, 2_600, &[Kind::Fan], Filler::Xor, 64, 64);
+    run(0xfa40_0002, 5_000, &[Kind::Fan], Filler::Xor, 64, 64);
 }
 
 #[test]
 fn triangulated_grids_cover_each_inside_pixel_once_with_xor_filler() {
-    run(0x6a1d_0002, 2_600, &[Kind::Grid], Filler::Xor, 64, 64);
+    run(0x6a1d_0002, 5_000, &[Kind::Grid], Filler::Xor, 64, 64);
 }
 
 #[test]
-fn large_meshes_cover_each_inside_pixel_once_on_1000x1000() {
+fn large_meshes_cover_each_inside_pixel_once_on_1000x1000_with_scan_converter() {
     run(
         0x1000_0001,
-        16,
+        24,
         &[Kind::Fan, Kind::Grid],
         Filler::Scan(Rule::EvenOdd),
         1000,
         1000,
     );
+}
+
+#[test]
+fn large_meshes_cover_each_inside_pixel_once_on_1000x1000_with_xor_filler() {
     run(
         0x1000_0002,
-        8,
+        12,
         &[Kind::Fan, Kind::Grid],
         Filler::Xor,
         1000,

@@ -65,12 +65,12 @@ fn compare(seed: u64, count: usize, width: u16, height: u16) {
 
 #[test]
 fn xor_filler_equals_even_odd_scan_converter_and_reference_on_64x64() {
-    compare(0x0e0e_0064, 30_000, 64, 64);
+    compare(0x0e0e_0064, 60_000, 64, 64);
 }
 
 #[test]
 fn xor_filler_equals_even_odd_scan_converter_and_reference_on_400x240() {
-    compare(0x0e0e_0400, 3_000, 400, 240);
+    compare(0x0e0e_0400, 6_000, 400, 240);
 }
 
 /// Widths that are not a multiple of the 32-bit row word, and 1-pixel frames.

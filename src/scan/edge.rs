@@ -97,12 +97,30 @@ impl EdgeLine {
         let dy = i128::from(self.y1) - i128::from(self.y0);
         let t = (2 * i128::from(j) + 1) * h - i128::from(self.y0);
         let num = t * dx;
-        // dy > 0 by construction (the edge is not horizontal).
-        let x = i128::from(self.x0) + num.div_euclid(dy);
-        let up = i128::from(num.rem_euclid(dy) != 0);
+        // dy > 0 by construction (the edge is not horizontal): the checks cannot fail,
+        // they only spare the division its panic path.
+        let x = i128::from(self.x0) + num.checked_div_euclid(dy).unwrap_or(0);
+        let up = i128::from(num.checked_rem_euclid(dy).unwrap_or(0) != 0);
         let c = (x + h - 1 + up) >> (s + 1);
         c.clamp(0, i128::from(width)) as u16
     }
+}
+
+/// Floor quotient and non-negative remainder for `d > 0`; in 32 bits when both
+/// operands fit (one hardware divide on a Cortex-M4 instead of a 64-bit library call).
+#[inline]
+fn div_rem_euclid(n: i64, d: i64) -> (i64, i64) {
+    if let (Ok(n32), Ok(d32)) = (i32::try_from(n), i32::try_from(d)) {
+        let (q, r) = (
+            n32.checked_div_euclid(d32).unwrap_or(0),
+            n32.checked_rem_euclid(d32).unwrap_or(0),
+        );
+        return (i64::from(q), i64::from(r));
+    }
+    (
+        n.checked_div_euclid(d).unwrap_or(0),
+        n.checked_rem_euclid(d).unwrap_or(0),
+    )
 }
 
 /// The stepping state of one edge inside the guard band (all 32-bit).
@@ -149,13 +167,15 @@ impl Edge {
         let dy = line.y1 - line.y0;
         let t = (2 * i64::from(rows.first) + 1) * h - line.y0;
         let num = t * dx;
-        edge.e = (line.x0 + num.div_euclid(dy) + h - 1) as i32;
-        edge.r = num.rem_euclid(dy) as i32;
+        // dy > 0 (not horizontal): `checked_` only spares the divisions a panic path.
+        let (q, r) = div_rem_euclid(num, dy);
+        edge.e = (line.x0 + q + h - 1) as i32;
+        edge.r = r as i32;
         edge.dy = dy as i32;
         if rows.end - rows.first > 1 {
-            let step = 2 * h * dx;
-            edge.qs = step.div_euclid(dy) as i32;
-            edge.rs = step.rem_euclid(dy) as i32;
+            let (qs, rs) = div_rem_euclid(2 * h * dx, dy);
+            edge.qs = qs as i32;
+            edge.rs = rs as i32;
         }
         Some(edge)
     }
