@@ -35,8 +35,62 @@ pub enum Error<T = Infallible> {
         /// Height of the target in pixels.
         height: u32,
     },
+    /// A mesh vertex has a NaN or infinite coordinate.
+    NonFiniteVertex {
+        /// 0-based vertex index.
+        vertex: usize,
+    },
+    /// A face refers to a vertex that does not exist.
+    IndexOutOfRange {
+        /// 0-based face index.
+        face: usize,
+        /// The offending vertex index.
+        index: u32,
+    },
+    /// A face has fewer than 3 distinct vertices (by position).
+    DegenerateFace {
+        /// 0-based face index.
+        face: usize,
+    },
+    /// The face offsets do not start at 0, decrease, or do not end at the index count.
+    BadFaceOffsets {
+        /// The face whose range is wrong.
+        face: usize,
+    },
+    /// The mesh has no faces.
+    EmptyMesh,
+    /// More faces than face ids can name.
+    TooManyFaces {
+        /// Faces in the mesh.
+        faces: usize,
+        /// The most supported.
+        max: usize,
+    },
+    /// The camera cannot make a view.
+    BadCamera(CameraProblem),
     /// The span sink or draw target failed.
     Target(T),
+}
+
+/// Why a camera was rejected.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
+pub enum CameraProblem {
+    /// A camera parameter is NaN or infinite.
+    NonFinite,
+    /// The eye is at the target.
+    EyeAtTarget,
+    /// `up` is zero or parallel to the view direction.
+    UpParallelToView,
+    /// The field of view is not in (0, 180) degrees.
+    FovOutOfRange,
+    /// The orthographic half-height is not positive.
+    HalfHeightNotPositive,
+    /// `near <= 0`.
+    NearNotPositive,
+    /// `far <= near`.
+    FarNotBeyondNear,
 }
 
 impl Error<Infallible> {
@@ -50,6 +104,13 @@ impl Error<Infallible> {
                 Error::CapacityExceeded { needed, capacity }
             }
             Error::ViewportTooLarge { width, height } => Error::ViewportTooLarge { width, height },
+            Error::NonFiniteVertex { vertex } => Error::NonFiniteVertex { vertex },
+            Error::IndexOutOfRange { face, index } => Error::IndexOutOfRange { face, index },
+            Error::DegenerateFace { face } => Error::DegenerateFace { face },
+            Error::BadFaceOffsets { face } => Error::BadFaceOffsets { face },
+            Error::EmptyMesh => Error::EmptyMesh,
+            Error::TooManyFaces { faces, max } => Error::TooManyFaces { faces, max },
+            Error::BadCamera(p) => Error::BadCamera(p),
             Error::Target(never) => match never {},
         }
     }
@@ -71,6 +132,21 @@ impl<T: fmt::Debug> fmt::Display for Error<T> {
                 "target of {width}x{height} pixels exceeds the {0}x{0} maximum",
                 crate::MAX_VIEWPORT
             ),
+            Error::NonFiniteVertex { vertex } => {
+                write!(f, "vertex {vertex} has a NaN or infinite coordinate")
+            }
+            Error::IndexOutOfRange { face, index } => {
+                write!(f, "face {face} refers to vertex {index}, which does not exist")
+            }
+            Error::DegenerateFace { face } => {
+                write!(f, "face {face} has fewer than 3 distinct vertices")
+            }
+            Error::BadFaceOffsets { face } => write!(f, "face offsets are wrong at face {face}"),
+            Error::EmptyMesh => f.write_str("the mesh has no faces"),
+            Error::TooManyFaces { faces, max } => {
+                write!(f, "the mesh has {faces} faces, at most {max} are supported")
+            }
+            Error::BadCamera(p) => write!(f, "bad camera: {p:?}"),
             Error::Target(e) => write!(f, "draw target failed: {e:?}"),
         }
     }

@@ -28,11 +28,12 @@ pub mod codefill;
 mod error;
 mod framebuffer;
 mod geometry;
+pub mod mesh;
 pub mod scan;
 mod span;
 
 pub use codefill::XorFiller;
-pub use error::Error;
+pub use error::{CameraProblem, Error};
 pub use framebuffer::{packed_len, PackedFramebuffer};
 pub use geometry::{ScreenPoint, Viewport, GUARD_BAND_PX, MAX_SUBPIXEL_BITS, MAX_VIEWPORT};
 pub use scan::{FillRule, ScanConverter};

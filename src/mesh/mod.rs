@@ -1,0 +1,1 @@
+//! Meshes borrowed from the caller, validated once; edge adjacency and feature edges.
