@@ -136,7 +136,10 @@ impl<T: fmt::Debug> fmt::Display for Error<T> {
                 write!(f, "vertex {vertex} has a NaN or infinite coordinate")
             }
             Error::IndexOutOfRange { face, index } => {
-                write!(f, "face {face} refers to vertex {index}, which does not exist")
+                write!(
+                    f,
+                    "face {face} refers to vertex {index}, which does not exist"
+                )
             }
             Error::DegenerateFace { face } => {
                 write!(f, "face {face} has fewer than 3 distinct vertices")

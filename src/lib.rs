@@ -24,17 +24,27 @@
     unused_qualifications
 )]
 
+pub mod camera;
 pub mod codefill;
 mod error;
 mod framebuffer;
 mod geometry;
 pub mod mesh;
+mod pattern;
+pub mod render;
 pub mod scan;
+mod sort;
 mod span;
 
+pub use camera::{Camera, Projection};
 pub use codefill::XorFiller;
 pub use error::{CameraProblem, Error};
 pub use framebuffer::{packed_len, PackedFramebuffer};
 pub use geometry::{ScreenPoint, Viewport, GUARD_BAND_PX, MAX_SUBPIXEL_BITS, MAX_VIEWPORT};
+pub use mesh::{
+    face_owns_edge, EdgeAdjacency, EdgeKind, HalfEdgeRecord, Mesh, MeshEdge, Viewpoint, MAX_FACES,
+};
+pub use pattern::Pattern;
+pub use render::{Cull, DrawMode, MonoPalette, Settings, Stats, Workspace, ZBufferRenderer};
 pub use scan::{FillRule, ScanConverter};
 pub use span::{ContiguousRows, FillSolid, Span, SpanSink, ROW_SEGMENTS};

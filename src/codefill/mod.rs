@@ -68,7 +68,13 @@ impl<const EDGES: usize, const WORDS: usize> XorFiller<EDGES, WORDS> {
                 capacity: WORDS,
             });
         }
-        self.walker.begin(points, viewport).map_err(Error::widen)?;
+        let window = crate::scan::RowRange {
+            first: 0,
+            end: i32::from(viewport.height),
+        };
+        self.walker
+            .begin(points, viewport, window)
+            .map_err(Error::widen)?;
         while let Some((y, crossings)) = self.walker.next_row(points, false) {
             let mut first = words;
             let mut last = 0;

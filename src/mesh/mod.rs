@@ -1,1 +1,264 @@
 //! Meshes borrowed from the caller, validated once; edge adjacency and feature edges.
+//!
+//! A [`Mesh`] is three slices in compressed-row form: vertex positions, the vertex
+//! indices of every face one after the other, and where each face starts. It is
+//! checked once in [`Mesh::new`], so the renderer never meets a bad index or a NaN.
+//! [`EdgeAdjacency`] then finds the mesh's unique edges (vertices welded by
+//! bit-identical position) and what kind each one is; [`MeshEdge::is_feature`]
+//! says which of them a line drawing shows from a given [`Viewpoint`].
+
+mod adjacency;
+mod features;
+#[cfg(test)]
+mod tests;
+
+pub use adjacency::{EdgeAdjacency, HalfEdgeRecord};
+pub use features::{face_owns_edge, EdgeKind, MeshEdge};
+
+use crate::Error;
+
+/// Most faces a mesh may have: face ids are 16-bit in the renderer's id buffers.
+pub const MAX_FACES: usize = 65_535;
+
+/// A validated mesh borrowing the caller's slices.
+///
+/// Face `f` is `indices[face_offsets[f] as usize..face_offsets[f + 1] as usize]`
+/// (CSR form): `face_offsets.len() == faces + 1`, `face_offsets[0] == 0`, the
+/// offsets never decrease and the last one is `indices.len()`. Faces wind
+/// counter-clockwise seen from their front.
+#[derive(Debug, Clone, Copy)]
+pub struct Mesh<'a> {
+    vertices: &'a [[f32; 3]],
+    indices: &'a [u32],
+    face_offsets: &'a [u32],
+    /// Kept from validation: the renderer sizes its per-face buffers by it.
+    max_face_len: usize,
+}
+
+/// Where the eye is, for facing tests.
+///
+/// A face faces the eye when `n . (eye - centroid) > 0` (perspective), or when
+/// its normal points toward +Z in eye space (orthographic), that is
+/// `n . direction_to_eye > 0` with `direction_to_eye = eye - target`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Viewpoint {
+    /// A perspective camera at `eye` (world space).
+    Perspective {
+        /// The eye position.
+        eye: [f32; 3],
+    },
+    /// An orthographic camera looking along `-direction_to_eye`.
+    Orthographic {
+        /// Any positive multiple of `eye - target`.
+        direction_to_eye: [f32; 3],
+    },
+}
+
+impl<'a> Mesh<'a> {
+    /// Validates the slices once and reports the first problem found, checking in
+    /// this order:
+    ///
+    /// 1. the offsets, face by face: [`Error::BadFaceOffsets`] names the first face
+    ///    whose range is wrong (face 0 when the offsets are empty or do not start at
+    ///    0; the last face when they do not end at `indices.len()`);
+    /// 2. the face count: none is [`Error::EmptyMesh`], more than [`MAX_FACES`] is
+    ///    [`Error::TooManyFaces`];
+    /// 3. every vertex, in order: [`Error::NonFiniteVertex`];
+    /// 4. every face, in order: first its indices ([`Error::IndexOutOfRange`] with
+    ///    the first bad index), then [`Error::DegenerateFace`] when it has fewer than
+    ///    3 distinct positions (bit-identical coordinates count as one).
+    ///
+    /// A face of 3 distinct but collinear positions is valid: its normal is zero.
+    pub fn new(
+        vertices: &'a [[f32; 3]],
+        indices: &'a [u32],
+        face_offsets: &'a [u32],
+    ) -> Result<Self, Error> {
+        check_offsets(indices.len(), face_offsets)?;
+        let faces = face_offsets.len().saturating_sub(1);
+        if faces == 0 {
+            return Err(Error::EmptyMesh);
+        }
+        if faces > MAX_FACES {
+            return Err(Error::TooManyFaces {
+                faces,
+                max: MAX_FACES,
+            });
+        }
+        if let Some(vertex) = vertices
+            .iter()
+            .position(|v| !v.iter().all(|c| c.is_finite()))
+        {
+            return Err(Error::NonFiniteVertex { vertex });
+        }
+        let mut mesh = Self {
+            vertices,
+            indices,
+            face_offsets,
+            max_face_len: 0,
+        };
+        for face in 0..faces {
+            let corners = mesh.face(face);
+            if let Some(&index) = corners.iter().find(|&&i| mesh.position_bits(i).is_none()) {
+                return Err(Error::IndexOutOfRange { face, index });
+            }
+            if !mesh.has_three_positions(corners) {
+                return Err(Error::DegenerateFace { face });
+            }
+            mesh.max_face_len = mesh.max_face_len.max(corners.len());
+        }
+        Ok(mesh)
+    }
+
+    /// The vertex positions.
+    pub fn vertices(&self) -> &'a [[f32; 3]] {
+        self.vertices
+    }
+
+    /// The vertex indices of all faces, one face after the other.
+    pub fn indices(&self) -> &'a [u32] {
+        self.indices
+    }
+
+    /// The face offsets (CSR form), one more than the faces.
+    pub fn face_offsets(&self) -> &'a [u32] {
+        self.face_offsets
+    }
+
+    /// Number of faces, at least 1 and at most [`MAX_FACES`].
+    pub fn face_count(&self) -> usize {
+        self.face_offsets.len().saturating_sub(1)
+    }
+
+    /// Vertex indices of face `f` (empty slice when out of range).
+    pub fn face(&self, f: usize) -> &'a [u32] {
+        let range = f.checked_add(1).and_then(|next| {
+            let start = *self.face_offsets.get(f)? as usize;
+            let end = *self.face_offsets.get(next)? as usize;
+            self.indices.get(start..end)
+        });
+        range.unwrap_or(&[])
+    }
+
+    /// Largest number of vertices of one face.
+    pub fn max_face_len(&self) -> usize {
+        self.max_face_len
+    }
+
+    /// Newell normal of face `f`: twice its area vector, pointing to the side from
+    /// which it winds counter-clockwise. Not normalized; zero for a face of zero
+    /// area and for `f` out of range.
+    ///
+    /// It is summed as the fan `(p_i - p_0) x (p_(i+1) - p_0)`, the same vector as
+    /// Newell's `p_i x p_(i+1)` for any polygon, planar or not, but rounded relative
+    /// to the face rather than to the origin, so that a small face far from the
+    /// origin keeps its normal and an exactly collinear triangle gets exactly zero.
+    pub fn face_normal(&self, f: usize) -> [f32; 3] {
+        let mut corners = self
+            .face(f)
+            .iter()
+            .filter_map(|&i| self.vertices.get(i as usize));
+        let Some(origin) = corners.next() else {
+            return [0.0; 3];
+        };
+        let mut normal = [0.0; 3];
+        let mut previous: Option<[f32; 3]> = None;
+        for p in corners {
+            let d = sub(p, origin);
+            if let Some(q) = previous {
+                normal = add(&normal, &cross(&q, &d));
+            }
+            previous = Some(d);
+        }
+        normal
+    }
+
+    /// Mean of face `f`'s vertices (the origin when `f` is out of range).
+    pub fn face_centroid(&self, f: usize) -> [f32; 3] {
+        let mut corners = self
+            .face(f)
+            .iter()
+            .filter_map(|&i| self.vertices.get(i as usize));
+        let Some(origin) = corners.next() else {
+            return [0.0; 3];
+        };
+        // Offsets from the first vertex keep the sum small for a face far from the origin.
+        let mut sum = [0.0f32; 3];
+        let mut count = 1.0f32;
+        for p in corners {
+            sum = add(&sum, &sub(p, origin));
+            count += 1.0;
+        }
+        add(origin, &sum.map(|c| c / count))
+    }
+
+    /// Does face `f` face the viewpoint? False for a zero normal and for `f` out of
+    /// range; see [`Viewpoint`] for the test.
+    pub fn faces_viewpoint(&self, f: usize, view: &Viewpoint) -> bool {
+        let toward_eye = match view {
+            Viewpoint::Perspective { eye } => sub(eye, &self.face_centroid(f)),
+            Viewpoint::Orthographic { direction_to_eye } => *direction_to_eye,
+        };
+        dot(&self.face_normal(f), &toward_eye) > 0.0
+    }
+
+    /// The bit patterns of vertex `i`'s coordinates: equal exactly when the
+    /// positions weld. `None` when there is no such vertex.
+    pub(crate) fn position_bits(&self, i: u32) -> Option<[u32; 3]> {
+        self.vertices.get(i as usize).map(|p| p.map(f32::to_bits))
+    }
+
+    /// Do these corners name at least 3 distinct positions?
+    fn has_three_positions(&self, corners: &[u32]) -> bool {
+        let mut positions = corners.iter().filter_map(|&i| self.position_bits(i));
+        let Some(first) = positions.next() else {
+            return false;
+        };
+        // Everything before the second distinct position equals the first, so the
+        // third can only come after it: one pass suffices.
+        let Some(second) = positions.find(|p| *p != first) else {
+            return false;
+        };
+        positions.any(|p| p != first && p != second)
+    }
+}
+
+/// Checks the CSR offsets against the index count; see [`Mesh::new`].
+fn check_offsets(index_count: usize, offsets: &[u32]) -> Result<(), Error> {
+    if offsets.first() != Some(&0) {
+        return Err(Error::BadFaceOffsets { face: 0 });
+    }
+    for (face, pair) in offsets.windows(2).enumerate() {
+        if let [start, end] = *pair {
+            if end < start || end as usize > index_count {
+                return Err(Error::BadFaceOffsets { face });
+            }
+        }
+    }
+    if offsets.last().map(|&end| end as usize) != Some(index_count) {
+        return Err(Error::BadFaceOffsets {
+            face: offsets.len().saturating_sub(2),
+        });
+    }
+    Ok(())
+}
+
+fn add(a: &[f32; 3], b: &[f32; 3]) -> [f32; 3] {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+
+fn sub(a: &[f32; 3], b: &[f32; 3]) -> [f32; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn cross(a: &[f32; 3], b: &[f32; 3]) -> [f32; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn dot(a: &[f32; 3], b: &[f32; 3]) -> f32 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}

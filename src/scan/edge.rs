@@ -64,13 +64,14 @@ impl EdgeLine {
         })
     }
 
-    /// Clips the edge to the viewport's rows and columns (`s` = sub-pixel bits).
-    pub fn clip(&self, s: u32, viewport: Viewport) -> Clipped {
+    /// Clips the edge to `rows` (inside the viewport) and the viewport's columns
+    /// (`s` = sub-pixel bits).
+    pub fn clip(&self, s: u32, viewport: Viewport, rows: RowRange) -> Clipped {
         let h = 1i64 << s;
         // First row whose sample is at or below y: ceil((y - h) / p).
         let row = |y: i64| (y + h - 1) >> (s + 1);
-        let first = row(self.y0).max(0);
-        let end = row(self.y1).min(i64::from(viewport.height));
+        let first = row(self.y0).max(i64::from(rows.first));
+        let end = row(self.y1).min(i64::from(rows.end));
         if first >= end {
             return Clipped::Gone;
         }

@@ -92,7 +92,29 @@ impl<const EDGES: usize> ScanConverter<EDGES> {
         sink: &mut K,
     ) -> Result<(), Error<K::Error>> {
         let viewport = sink.viewport();
-        self.walker.begin(points, viewport).map_err(Error::widen)?;
+        self.fill_rows(points, rule, 0..viewport.height, color, sink)
+    }
+
+    /// Like [`fill`](Self::fill), but only for the rows `rows` (clamped to the
+    /// viewport): the edges are set up at the first row of the window, so a renderer
+    /// that works in bands of rows walks each band's edges only. `needed` in a
+    /// `CapacityExceeded` error counts the edges that cross the window.
+    pub fn fill_rows<Frac: LeEqU32, K: SpanSink>(
+        &mut self,
+        points: &[ScreenPoint<Frac>],
+        rule: FillRule,
+        rows: core::ops::Range<u16>,
+        color: K::Color,
+        sink: &mut K,
+    ) -> Result<(), Error<K::Error>> {
+        let viewport = sink.viewport();
+        let window = RowRange {
+            first: i32::from(rows.start),
+            end: i32::from(rows.end.min(viewport.height)),
+        };
+        self.walker
+            .begin(points, viewport, window)
+            .map_err(Error::widen)?;
         while let Some((y, crossings)) = self.walker.next_row(points, true) {
             emit_row(y, crossings, rule, viewport.width, color, sink).map_err(Error::Target)?;
         }

@@ -10,6 +10,7 @@ use heapless::Vec;
 use crate::geometry::Subpixel;
 use crate::scan::edge::{Clipped, Edge, EdgeLine, EdgeTable};
 use crate::scan::RowRange;
+use crate::sort::sort_by_key;
 use crate::{Error, ScreenPoint, Viewport};
 
 /// One edge crossing on a row: pixels from `x` on lie right of it.
@@ -45,6 +46,8 @@ pub(crate) struct PolygonWalker<const N: usize> {
     row: i32,
     mode: Mode,
     viewport: Viewport,
+    /// The rows walked: the viewport's, or a band of them.
+    window: RowRange,
     s: u32,
 }
 
@@ -76,16 +79,19 @@ impl<const N: usize> PolygonWalker<N> {
                 width: 0,
                 height: 0,
             },
+            window: RowRange { first: 0, end: 0 },
             s: 0,
         }
     }
 
-    /// Prepares to walk `points` on `viewport`. Fails, before anything is drawn,
-    /// when the polygon has fewer than 3 vertices or needs more than `N` edges.
+    /// Prepares to walk `points` on rows `window` of `viewport` (the caller keeps the
+    /// window inside the viewport). Fails, before anything is drawn, when the polygon
+    /// has fewer than 3 vertices or needs more than `N` edges in the window.
     pub fn begin<Frac: LeEqU32>(
         &mut self,
         points: &[ScreenPoint<Frac>],
         viewport: Viewport,
+        window: RowRange,
     ) -> Result<(), Error> {
         if points.len() < 3 {
             return Err(Error::TooFewVertices {
@@ -95,6 +101,7 @@ impl<const N: usize> PolygonWalker<N> {
         let s = Subpixel::<Frac>::BITS;
         self.s = s;
         self.viewport = viewport;
+        self.window = window;
         self.table.edges.clear();
         self.active.clear();
         self.crossings.clear();
@@ -103,7 +110,7 @@ impl<const N: usize> PolygonWalker<N> {
             self.mode = Mode::Narrow;
             let mut needed = 0;
             for line in edge_lines(points) {
-                if let Some(edge) = Edge::new(&line, line.clip(s, viewport), s) {
+                if let Some(edge) = Edge::new(&line, line.clip(s, viewport, window), s) {
                     needed += 1;
                     // A full table keeps counting, to report the size needed.
                     let _ = self.table.edges.push(edge);
@@ -116,7 +123,7 @@ impl<const N: usize> PolygonWalker<N> {
             let mut needed = 0;
             let mut rows = RowRange { first: 0, end: 0 };
             for line in edge_lines(points) {
-                if let Clipped::Left(r) | Clipped::Rows(r) = line.clip(s, viewport) {
+                if let Clipped::Left(r) | Clipped::Rows(r) = line.clip(s, viewport, window) {
                     needed += 1;
                     rows = if rows.first >= rows.end {
                         r
@@ -211,12 +218,12 @@ impl<const N: usize> PolygonWalker<N> {
         points: &[ScreenPoint<Frac>],
         rows: RowRange,
     ) -> Option<u16> {
-        let (s, viewport) = (self.s, self.viewport);
+        let (s, viewport, window) = (self.s, self.viewport, self.window);
         while self.row < rows.end {
             let row = self.row;
             self.row += 1;
             for line in edge_lines(points) {
-                let x = match line.clip(s, viewport) {
+                let x = match line.clip(s, viewport, window) {
                     Clipped::Left(r) if r.contains(row) => 0,
                     Clipped::Rows(r) if r.contains(row) => line.crossing_at(s, row, viewport.width),
                     _ => continue,
@@ -242,21 +249,4 @@ fn check_capacity(needed: usize, capacity: usize) -> Result<(), Error> {
         return Err(Error::CapacityExceeded { needed, capacity });
     }
     Ok(())
-}
-
-/// Shell sort (Ciura's gaps): short, in place, no recursion, and small in flash,
-/// unlike the library sort; with gap 1 alone it is the insertion sort that nearly
-/// sorted rows want.
-fn sort_by_key<T, K: Ord>(items: &mut [T], key: impl Fn(&T) -> K) {
-    const GAPS: [usize; 8] = [701, 301, 132, 57, 23, 10, 4, 1];
-    let len = items.len();
-    for gap in GAPS.into_iter().filter(|&g| g < len) {
-        for i in gap..len {
-            let mut j = i;
-            while j >= gap && key(&items[j - gap]) > key(&items[j]) {
-                items.swap(j - gap, j);
-                j -= gap;
-            }
-        }
-    }
 }

@@ -1,0 +1,121 @@
+//! The host-side contract between the library pipeline, the f64 reference, the tests
+//! and the `render` command: a mesh, a camera, render settings in; a frame out.
+
+/// A mesh on the host: f64 positions and faces of 3 or more 0-based vertex indices
+/// (face index = position in `faces`), counter-clockwise seen from the front.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct MeshData {
+    /// Vertex positions.
+    pub vertices: Vec<[f64; 3]>,
+    /// Faces as 0-based vertex indices.
+    pub faces: Vec<Vec<u32>>,
+}
+
+/// Projection of a camera, as CONVENTIONS.md defines it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ProjectionSpec {
+    /// Vertical field of view in degrees.
+    Perspective { fov_deg: f64 },
+    /// Orthographic with this half-height in world units.
+    Orthographic { half_height: f64 },
+}
+
+/// A camera: `look_at(eye, target, up)` plus projection and clip distances.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CameraSpec {
+    pub eye: [f64; 3],
+    pub target: [f64; 3],
+    pub up: [f64; 3],
+    pub projection: ProjectionSpec,
+    pub near: f64,
+    pub far: f64,
+}
+
+impl Default for CameraSpec {
+    fn default() -> Self {
+        Self {
+            eye: [0.0, 0.0, 5.0],
+            target: [0.0; 3],
+            up: [0.0, 1.0, 0.0],
+            projection: ProjectionSpec::Perspective { fov_deg: 45.0 },
+            near: 0.1,
+            far: 1000.0,
+        }
+    }
+}
+
+/// Back-face culling.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum CullSpec {
+    On,
+    Off,
+    /// On when the mesh is closed (every edge shared by exactly two faces).
+    #[default]
+    Auto,
+}
+
+/// What is drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ModeSpec {
+    /// All feature edges solid, nothing hidden.
+    Wireframe,
+    /// Visible feature edges only.
+    Hidden,
+    /// Visible feature edges solid, hidden ones through the pattern.
+    #[default]
+    Dashed,
+    /// Faces filled, no lines.
+    Surfaces,
+    /// Faces filled, plus dashed lines.
+    SurfacesDashed,
+}
+
+/// Render settings.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RenderSpec {
+    pub width: usize,
+    pub height: usize,
+    pub crease_deg: f64,
+    pub cull: CullSpec,
+    pub mode: ModeSpec,
+    /// Sub-pixel bits S.
+    pub subpixel: u32,
+    /// Depth bits, 16 or 32.
+    pub depth_bits: u32,
+    /// Band height in rows (`height` = one full-frame band).
+    pub band: usize,
+    /// Pattern name (see `pbuffer::Pattern::by_name`).
+    pub pattern: String,
+}
+
+impl Default for RenderSpec {
+    fn default() -> Self {
+        Self {
+            width: 400,
+            height: 240,
+            crease_deg: 30.0,
+            cull: CullSpec::Auto,
+            mode: ModeSpec::Dashed,
+            subpixel: 4,
+            depth_bits: 32,
+            band: 240,
+            pattern: "paper".into(),
+        }
+    }
+}
+
+/// One rendered frame, row-major, `width * height` entries each.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Frame {
+    pub width: usize,
+    pub height: usize,
+    /// 1 + index of the face visible at each pixel, 0 where none (the `--ids` image).
+    pub ids: Vec<u32>,
+    /// 0 no feature edge, 1 visible-edge pixel, 2 hidden-edge pixel before the pattern;
+    /// 1 wins where both meet (the `--lines` image).
+    pub lines: Vec<u8>,
+    /// The 1-bpp picture, packed row-major MSB first (`PackedFramebuffer` layout).
+    pub packed: Vec<u8>,
+    /// Figures: faces, faces_drawn, feature_edges, spans, working_ram_bytes, ...
+    pub stats: Vec<(String, u64)>,
+}

@@ -1,0 +1,250 @@
+//! The library's 3-D pipeline on the host: `MeshData` and specs in, a `Frame` out.
+
+use std::time::Instant;
+
+use embedded_graphics::pixelcolor::BinaryColor;
+use fixed::types::extra::{LeEqU32, U0, U1, U10, U11, U12, U2, U3, U4, U5, U6, U7, U8, U9};
+use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
+use pbuffer::render::{Depth, FrameProbe, ProjectedVertex};
+use pbuffer::{
+    Camera, Cull, DrawMode, MonoPalette, Pattern, Projection, Settings, Span, SpanSink,
+    Viewport, Workspace, ZBufferRenderer,
+};
+
+use crate::frame::{CameraSpec, CullSpec, Frame, MeshData, ModeSpec, ProjectionSpec, RenderSpec};
+
+/// Scan-converter edge capacity and clipped-polygon capacity used on the host.
+const EDGES: usize = 512;
+const POLY: usize = 512;
+
+/// A packed 1-bpp frame of any size (the `PackedFramebuffer` layout), as a span sink.
+#[derive(Debug)]
+pub struct PackedFrame {
+    pub width: usize,
+    pub height: usize,
+    pub bytes: Vec<u8>,
+    pub spans: u64,
+}
+
+impl PackedFrame {
+    pub fn new(width: usize, height: usize) -> Self {
+        Self {
+            width,
+            height,
+            bytes: vec![0; width.div_ceil(8) * height],
+            spans: 0,
+        }
+    }
+}
+
+impl SpanSink for PackedFrame {
+    type Color = BinaryColor;
+    type Error = std::convert::Infallible;
+
+    fn viewport(&self) -> Viewport {
+        Viewport {
+            width: self.width as u16,
+            height: self.height as u16,
+        }
+    }
+
+    fn fill_span(&mut self, span: Span, color: BinaryColor) -> Result<(), Self::Error> {
+        self.spans += 1;
+        let stride = self.width.div_ceil(8);
+        for x in span.x0()..span.x1() {
+            let i = usize::from(span.y()) * stride + usize::from(x) / 8;
+            let m = 0x80u8 >> (x % 8);
+            if color.is_on() {
+                self.bytes[i] |= m;
+            } else {
+                self.bytes[i] &= !m;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Collects the `--ids` and `--lines` images.
+struct Collect {
+    width: usize,
+    ids: Vec<u32>,
+    lines: Vec<u8>,
+}
+
+impl FrameProbe for Collect {
+    fn row(&mut self, y: u16, ids: &[u16], visible: &[u32], hidden: &[u32]) {
+        let base = usize::from(y) * self.width;
+        for (x, &id) in ids.iter().enumerate().take(self.width) {
+            self.ids[base + x] = u32::from(id);
+            let bit = |w: &[u32]| w.get(x / 32).is_some_and(|w| w & (1 << (x % 32)) != 0);
+            self.lines[base + x] = if bit(visible) {
+                1
+            } else if bit(hidden) {
+                2
+            } else {
+                0
+            };
+        }
+    }
+}
+
+/// The library mesh's borrowed arrays, built from `MeshData`.
+pub struct MeshArrays {
+    pub vertices: Vec<[f32; 3]>,
+    pub indices: Vec<u32>,
+    pub offsets: Vec<u32>,
+}
+
+impl MeshArrays {
+    pub fn new(mesh: &MeshData) -> Self {
+        let vertices = mesh
+            .vertices
+            .iter()
+            .map(|v| v.map(|c| c as f32))
+            .collect();
+        let mut indices = Vec::new();
+        let mut offsets = vec![0u32];
+        for f in &mesh.faces {
+            indices.extend_from_slice(f);
+            offsets.push(indices.len() as u32);
+        }
+        Self {
+            vertices,
+            indices,
+            offsets,
+        }
+    }
+}
+
+fn camera(spec: &CameraSpec) -> Result<Camera, String> {
+    let f = |v: [f64; 3]| v.map(|c| c as f32);
+    let projection = match spec.projection {
+        ProjectionSpec::Perspective { fov_deg } => Projection::Perspective {
+            fov_y_deg: fov_deg as f32,
+        },
+        ProjectionSpec::Orthographic { half_height } => Projection::Orthographic {
+            half_height: half_height as f32,
+        },
+    };
+    Camera::new(
+        f(spec.eye),
+        f(spec.target),
+        f(spec.up),
+        projection,
+        spec.near as f32,
+        spec.far as f32,
+    )
+    .map_err(|e| format!("camera: {e}"))
+}
+
+/// Renders with the library exactly as firmware would (fixed point, banded).
+pub fn render_frame(mesh: &MeshData, cam: &CameraSpec, spec: &RenderSpec) -> Result<Frame, String> {
+    match spec.subpixel {
+        0 => render_s::<U0>(mesh, cam, spec),
+        1 => render_s::<U1>(mesh, cam, spec),
+        2 => render_s::<U2>(mesh, cam, spec),
+        3 => render_s::<U3>(mesh, cam, spec),
+        4 => render_s::<U4>(mesh, cam, spec),
+        5 => render_s::<U5>(mesh, cam, spec),
+        6 => render_s::<U6>(mesh, cam, spec),
+        7 => render_s::<U7>(mesh, cam, spec),
+        8 => render_s::<U8>(mesh, cam, spec),
+        9 => render_s::<U9>(mesh, cam, spec),
+        10 => render_s::<U10>(mesh, cam, spec),
+        11 => render_s::<U11>(mesh, cam, spec),
+        12 => render_s::<U12>(mesh, cam, spec),
+        s => Err(format!("--subpixel {s}: must be 0 to 12")),
+    }
+}
+
+fn render_s<Frac: LeEqU32>(mesh: &MeshData, cam: &CameraSpec, spec: &RenderSpec) -> Result<Frame, String> {
+    match spec.depth_bits {
+        16 => render_sd::<Frac, u16>(mesh, cam, spec),
+        32 => render_sd::<Frac, u32>(mesh, cam, spec),
+        b => Err(format!("--depth-bits {b}: must be 16 or 32")),
+    }
+}
+
+fn render_sd<Frac: LeEqU32, D: Depth>(
+    data: &MeshData,
+    cam: &CameraSpec,
+    spec: &RenderSpec,
+) -> Result<Frame, String> {
+    let arrays = MeshArrays::new(data);
+    let mesh = Mesh::new(&arrays.vertices, &arrays.indices, &arrays.offsets)
+        .map_err(|e| format!("mesh: {e}"))?;
+    let mut weld = vec![0u32; arrays.vertices.len()];
+    let mut scratch = vec![HalfEdgeRecord::default(); arrays.indices.len()];
+    let mut edge_store = vec![MeshEdge::default(); arrays.indices.len()];
+    let adjacency = EdgeAdjacency::build(&mesh, spec.crease_deg as f32, &mut weld, &mut scratch, &mut edge_store)
+        .map_err(|e| format!("adjacency: {e}"))?;
+    let camera = camera(cam)?;
+    let pattern = Pattern::by_name(&spec.pattern).ok_or_else(|| format!("--pattern {}: unknown", spec.pattern))?;
+    let settings = Settings {
+        mode: match spec.mode {
+            ModeSpec::Wireframe => DrawMode::Wireframe,
+            ModeSpec::Hidden => DrawMode::HiddenRemoved,
+            ModeSpec::Dashed => DrawMode::Dashed,
+            ModeSpec::Surfaces => DrawMode::Surfaces,
+            ModeSpec::SurfacesDashed => DrawMode::SurfacesDashed,
+        },
+        cull: match spec.cull {
+            CullSpec::On => Cull::On,
+            CullSpec::Off => Cull::Off,
+            CullSpec::Auto => Cull::Auto,
+        },
+        pattern,
+    };
+    let (w, h) = (spec.width, spec.height);
+    let band = spec.band.clamp(1, h.max(1));
+    let row_words = w.div_ceil(32);
+    let mut vertices = vec![ProjectedVertex::default(); arrays.vertices.len()];
+    let mut drawn = vec![0u32; mesh.face_count().div_ceil(32)];
+    let mut features = vec![0u32; adjacency.edges().len().div_ceil(32)];
+    let mut depth = vec![D::default(); w * band];
+    let mut ids = vec![0u16; w * band];
+    let mut lines = vec![0u32; 2 * row_words * band];
+    let mut ws = Workspace {
+        vertices: &mut vertices,
+        drawn: &mut drawn,
+        features: &mut features,
+        depth: &mut depth,
+        ids: &mut ids,
+        lines: &mut lines,
+    };
+    let lent = ws.bytes()
+        + std::mem::size_of_val(weld.as_slice())
+        + std::mem::size_of_val(scratch.as_slice())
+        + std::mem::size_of_val(adjacency.edges());
+    let mut renderer = Box::new(ZBufferRenderer::<Frac, EDGES, POLY>::new());
+    let mut target = PackedFrame::new(w, h);
+    let mut probe = Collect {
+        width: w,
+        ids: vec![0; w * h],
+        lines: vec![0; w * h],
+    };
+    let start = Instant::now();
+    let stats = renderer
+        .render(&mesh, &adjacency, &camera, &settings, &mut ws, &MonoPalette::default(), &mut target, &mut probe)
+        .map_err(|e| format!("render: {e}"))?;
+    let time_us = start.elapsed().as_micros() as u64;
+    let working = lent + std::mem::size_of::<ZBufferRenderer<Frac, EDGES, POLY>>();
+    Ok(Frame {
+        width: w,
+        height: h,
+        ids: probe.ids,
+        lines: probe.lines,
+        packed: target.bytes,
+        stats: vec![
+            ("faces".into(), u64::from(stats.faces)),
+            ("faces_drawn".into(), u64::from(stats.faces_drawn)),
+            ("feature_edges".into(), u64::from(stats.feature_edges)),
+            ("spans".into(), u64::from(stats.spans)),
+            ("bands".into(), u64::from(stats.bands)),
+            ("band_rows".into(), u64::from(stats.band_rows)),
+            ("depth_buffer_bytes".into(), u64::from(stats.depth_buffer_bytes)),
+            ("working_ram_bytes".into(), working as u64),
+            ("time_us".into(), time_us),
+        ],
+    })
+}

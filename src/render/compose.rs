@@ -1,0 +1,154 @@
+//! Composition: a band's face ids and line masks become spans of one colour.
+
+use embedded_graphics_core::pixelcolor::{BinaryColor, PixelColor};
+
+use super::lines::LineMasks;
+use super::zband::ZBand;
+use super::{bit, DrawMode, FrameCtx, Settings};
+use crate::mesh::Viewpoint;
+use crate::{Span, SpanSink};
+
+/// The colours of a frame.
+pub trait Palette {
+    /// The target's colour type.
+    type Color: PixelColor;
+    /// Colour of drawn line pixels (visible, and hidden ones the pattern passes).
+    fn line(&self) -> Self::Color;
+    /// Colour of pixel (x, y) of face `face`, whose normal makes `shade` (0 edge-on ..
+    /// 255 facing the eye) with the view; `None` leaves the pixel untouched.
+    fn face(&self, face: u16, shade: u8, x: u16, y: u16) -> Option<Self::Color>;
+}
+
+/// The monochrome palette: lines in `line`, faces as ordered dither of their
+/// shading in the other colour's complement (lit faces light).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct MonoPalette {
+    /// The line colour; faces are dithered between it and its opposite.
+    pub line: BinaryColor,
+}
+
+/// 4x4 Bayer thresholds, 0..16.
+const BAYER: [[u8; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
+
+impl Palette for MonoPalette {
+    type Color = BinaryColor;
+
+    fn line(&self) -> BinaryColor {
+        self.line
+    }
+
+    fn face(&self, _face: u16, shade: u8, x: u16, y: u16) -> Option<BinaryColor> {
+        // Dark faces get more line-coloured dots; at most half, so lines stay readable.
+        let level = (255 - u16::from(shade)) / 32;
+        let threshold = BAYER[usize::from(y % 4)][usize::from(x % 4)];
+        Some(if u16::from(threshold) < level {
+            self.line
+        } else {
+            self.line.invert()
+        })
+    }
+}
+
+/// Sees each finished row: face ids (0 none, else 1 + face) and the visible and
+/// hidden line masks (bit k of word w is pixel 32w + k), before the pattern.
+pub trait FrameProbe {
+    /// Row `y` is finished.
+    fn row(&mut self, y: u16, ids: &[u16], visible: &[u32], hidden: &[u32]);
+}
+
+impl FrameProbe for () {
+    fn row(&mut self, _: u16, _: &[u16], _: &[u32], _: &[u32]) {}
+}
+
+/// Shading of face `f`: |cos| of the angle between its normal and the eye direction.
+fn shade(ctx: &FrameCtx<'_, '_>, view: &Viewpoint, f: usize) -> u8 {
+    let n = ctx.mesh.face_normal(f);
+    let len = crate::camera::sqrt(crate::camera::dot(n, n));
+    if len <= 0.0 {
+        return 0;
+    }
+    let d = view.direction_from(ctx.mesh.face_centroid(f));
+    let c = (crate::camera::dot(n, d) / len).abs().min(1.0);
+    (c * 255.0) as u8
+}
+
+/// Sends the band's rows to the sink; returns the number of spans sent.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn emit_band<D, K: SpanSink, P: Palette<Color = K::Color>, R: FrameProbe>(
+    ctx: &FrameCtx<'_, '_>,
+    settings: &Settings,
+    band: &ZBand<'_, D>,
+    masks: &LineMasks<'_>,
+    drawn: &[u32],
+    palette: &P,
+    view: &Viewpoint,
+    sink: &mut K,
+    probe: &mut R,
+) -> Result<u32, K::Error> {
+    let width = usize::from(band.width);
+    let mut spans = 0u32;
+    let mut shade_of: (u16, u8) = (0, 0);
+    for r in 0..band.rows {
+        let y = band.top + r;
+        let start = usize::from(r) * width;
+        let ids = band.ids.get(start..start + width).unwrap_or(&[]);
+        let (visible, hidden) = masks.row(r);
+        probe.row(y, ids, visible, hidden);
+        let line_word = |k: usize| -> u32 {
+            let v = visible.get(k).copied().unwrap_or(0);
+            let h = hidden.get(k).copied().unwrap_or(0);
+            match settings.mode {
+                DrawMode::Wireframe | DrawMode::HiddenRemoved => v,
+                DrawMode::Dashed | DrawMode::SurfacesDashed => {
+                    v | (h & settings.pattern.word(32 * k as u32, u32::from(y)))
+                }
+                DrawMode::Surfaces => 0,
+            }
+        };
+        let mut run: Option<(u16, u16, K::Color)> = None;
+        let mut put = |x: u16, color: Option<K::Color>, sink: &mut K| -> Result<(), K::Error> {
+            match (run, color) {
+                (Some((a, b, c)), Some(nc)) if b == x && c == nc => run = Some((a, x + 1, c)),
+                (prev, next) => {
+                    if let Some((a, b, c)) = prev {
+                        sink.fill_span(Span::new(y, a, b), c)?;
+                        spans += 1;
+                    }
+                    run = next.map(|c| (x, x + 1, c));
+                }
+            }
+            Ok(())
+        };
+        if settings.mode.draws_faces() {
+            for (x, &id) in ids.iter().enumerate() {
+                let x16 = x as u16;
+                let color = if line_word(x / 32) & (1 << (x % 32)) != 0 {
+                    Some(palette.line())
+                } else if id != 0 && bit(drawn, usize::from(id - 1)) {
+                    if shade_of.0 != id {
+                        shade_of = (id, shade(ctx, view, usize::from(id - 1)));
+                    }
+                    palette.face(id - 1, shade_of.1, x16, y)
+                } else {
+                    None
+                };
+                put(x16, color, sink)?;
+            }
+        } else {
+            let line = palette.line();
+            for k in 0..width.div_ceil(32) {
+                let mut bits = line_word(k);
+                while bits != 0 {
+                    let x = 32 * k + bits.trailing_zeros() as usize;
+                    if x >= width {
+                        break;
+                    }
+                    put(x as u16, Some(line), sink)?;
+                    bits &= bits - 1;
+                }
+            }
+        }
+        put(band.width, None, sink)?;
+    }
+    Ok(spans)
+}

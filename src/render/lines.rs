@@ -1,0 +1,174 @@
+//! The line pass: each feature edge is clipped, projected and drawn one pixel per
+//! pixel centre along its major axis; each pixel takes the visibility of the edge
+//! point there. Results go into two bit masks per band row (visible, hidden).
+
+use super::transform::ScreenVertex;
+
+/// Visible and hidden line pixels of one band, bit-packed: bit `k` of word `w` of a
+/// row is pixel `32w + k`.
+#[derive(Debug)]
+pub(crate) struct LineMasks<'s> {
+    /// `rows * row_words` visible words, then as many hidden words.
+    pub words: &'s mut [u32],
+    pub row_words: usize,
+    pub rows: u16,
+}
+
+impl LineMasks<'_> {
+    /// Clears the first `rows` rows of both masks.
+    pub fn reset(&mut self, rows: u16) {
+        self.rows = rows;
+        let n = 2 * self.row_words * usize::from(rows);
+        self.words.iter_mut().take(n).for_each(|w| *w = 0);
+    }
+
+    /// Marks pixel `x` of band row `row`.
+    pub fn set(&mut self, x: u16, row: u16, hidden: bool) {
+        let (x, row) = (usize::from(x), usize::from(row));
+        let plane = if hidden {
+            self.row_words * usize::from(self.rows)
+        } else {
+            0
+        };
+        if let Some(w) = self.words.get_mut(plane + row * self.row_words + x / 32) {
+            *w |= 1 << (x % 32);
+        }
+    }
+
+    /// The visible and hidden words of band row `row`.
+    pub fn row(&self, row: u16) -> (&[u32], &[u32]) {
+        let n = self.row_words;
+        let start = usize::from(row) * n;
+        let hidden = n * usize::from(self.rows) + start;
+        (
+            self.words.get(start..start + n).unwrap_or(&[]),
+            self.words.get(hidden..hidden + n).unwrap_or(&[]),
+        )
+    }
+}
+
+/// One pixel of a projected edge, with the edge point it stands for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct EdgePixel {
+    pub x: u16,
+    pub y: u16,
+    /// The edge point, in half sub-pixel units (`2^-(S+1)` px).
+    pub px: i64,
+    pub py: i64,
+    /// Its nearness.
+    pub q: u32,
+}
+
+/// Calls `pixel` for each pixel of segment `a`-`b` in rows `top..end` and columns
+/// `0..width`: one pixel per pixel centre along the major axis (end points
+/// included), in the row or column that contains the edge point there.
+pub(crate) fn walk_segment(
+    a: &ScreenVertex,
+    b: &ScreenVertex,
+    s: u32,
+    width: u16,
+    rows: core::ops::Range<u16>,
+    mut pixel: impl FnMut(EdgePixel),
+) {
+    let h = 1i64 << s;
+    let p = 2 * h;
+    let (ax, ay, bx, by) = (
+        2 * i64::from(a.x),
+        2 * i64::from(a.y),
+        2 * i64::from(b.x),
+        2 * i64::from(b.y),
+    );
+    let (dx, dy) = (bx - ax, by - ay);
+    if dx == 0 && dy == 0 {
+        return;
+    }
+    let x_major = dx.abs() >= dy.abs();
+    // Walk along the major axis u, with v the minor axis; (u0, v0) the start.
+    let (u0, v0, u1, v1, q0, q1) = match (x_major, if x_major { dx } else { dy } >= 0) {
+        (true, true) => (ax, ay, bx, by, a.q, b.q),
+        (true, false) => (bx, by, ax, ay, b.q, a.q),
+        (false, true) => (ay, ax, by, bx, a.q, b.q),
+        (false, false) => (by, bx, ay, ax, b.q, a.q),
+    };
+    let (du, dv, dq) = (u1 - u0, v1 - v0, i64::from(q1) - i64::from(q0));
+    // Pixel centres (2k+1)h in [u0, u1].
+    let k_first = (u0 - h + p - 1).div_euclid(p);
+    let k_last = (u1 - h).div_euclid(p);
+    let (limit_u, limit_v) = if x_major {
+        (
+            i64::from(width),
+            (i64::from(rows.start), i64::from(rows.end)),
+        )
+    } else {
+        (i64::from(rows.end), (0, i64::from(width)))
+    };
+    let mut k_lo = k_first.max(0);
+    let mut k_hi = k_last.min(limit_u - 1);
+    if !x_major {
+        k_lo = k_lo.max(i64::from(rows.start));
+    }
+    // For an x-major edge, narrow the columns to those whose row can be in the band.
+    if x_major && dv != 0 {
+        let at = |v: i64| u0 + (v - v0) * du / dv;
+        let (ua, ub) = (at(limit_v.0 * p), at(limit_v.1 * p));
+        let (lo, hi) = (ua.min(ub), ua.max(ub));
+        k_lo = k_lo.max((lo - h).div_euclid(p) - 1);
+        k_hi = k_hi.min((hi - h).div_euclid(p) + 1);
+    }
+    for k in k_lo..=k_hi {
+        let c = (2 * k + 1) * h;
+        let t = c - u0;
+        // v at the centre, exactly: floor((v0 du + t dv) / (du p)) is its pixel.
+        let num = v0 * du + t * dv;
+        let m = num.div_euclid(du * p);
+        if m < limit_v.0 || m >= limit_v.1 {
+            continue;
+        }
+        let v = num.div_euclid(du);
+        let q = i64::from(q0) + (t * dq).div_euclid(du);
+        let (x, y, px, py) = if x_major { (k, m, c, v) } else { (m, k, v, c) };
+        pixel(EdgePixel {
+            x: x as u16,
+            y: y as u16,
+            px,
+            py,
+            q: q.clamp(0, 1 << 31) as u32,
+        });
+    }
+}
+
+/// True when point (x, y) (half sub-pixel units) is inside `poly` by the even-odd
+/// rule (points exactly on an edge count as inside).
+pub(crate) fn polygon_contains(poly: &[ScreenVertex], x: i64, y: i64) -> bool {
+    let n = poly.len();
+    let mut inside = false;
+    for i in 0..n {
+        let (Some(a), Some(b)) = (poly.get(i), poly.get((i + 1) % n)) else {
+            continue;
+        };
+        let (ax, ay, bx, by) = (
+            2 * i64::from(a.x),
+            2 * i64::from(a.y),
+            2 * i64::from(b.x),
+            2 * i64::from(b.y),
+        );
+        if (ay <= y) == (by <= y) {
+            continue;
+        }
+        // Orientation of the point against the edge, taken upward.
+        let (lx, ly, hx, hy) = if ay < by {
+            (ax, ay, bx, by)
+        } else {
+            (bx, by, ax, ay)
+        };
+        let cross =
+            i128::from(hx - lx) * i128::from(y - ly) - i128::from(hy - ly) * i128::from(x - lx);
+        if cross == 0 {
+            return true;
+        }
+        if cross > 0 {
+            inside = !inside;
+        }
+    }
+    inside
+}

@@ -1,0 +1,205 @@
+//! The banded Z-buffer: depth and face id for `rows` rows of the frame at a time.
+//! Depth is the nearness `q` of [`ScreenVertex`], affine in screen space, so each
+//! face's depth is a plane: exact at the start of each span, then one add a pixel.
+
+use core::convert::Infallible;
+
+use embedded_graphics_core::pixelcolor::BinaryColor;
+
+use super::transform::ScreenVertex;
+use crate::{Span, SpanSink, Viewport};
+
+/// A depth sample: 16 or 32 bits of nearness (larger is nearer).
+pub trait Depth: Copy + Ord + Default + core::fmt::Debug {
+    /// Bits per sample.
+    const BITS: u32;
+    /// From nearness in `Q1.31` (0 ..= 2^31).
+    fn from_q(q: u32) -> Self;
+    /// Back to `Q1.31` (the low bits of a 16-bit sample are zero).
+    fn to_q(self) -> u32;
+}
+
+impl Depth for u16 {
+    const BITS: u32 = 16;
+    fn from_q(q: u32) -> Self {
+        (q >> 16).min(u32::from(u16::MAX)) as u16
+    }
+    fn to_q(self) -> u32 {
+        u32::from(self) << 16
+    }
+}
+
+impl Depth for u32 {
+    const BITS: u32 = 32;
+    fn from_q(q: u32) -> Self {
+        q
+    }
+    fn to_q(self) -> u32 {
+        self
+    }
+}
+
+/// Fraction bits of the per-pixel depth step.
+const STEP_BITS: u32 = 16;
+
+/// The nearness plane of one face in screen space, in half sub-pixel units
+/// (`2^-(S+1)` px): `q(X, Y) = q0 + (a (X - x0) + b (Y - y0)) / den`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(crate) struct DepthPlane {
+    x0: i64,
+    y0: i64,
+    q0: i64,
+    a: i128,
+    b: i128,
+    den: i128,
+    s: u32,
+}
+
+impl DepthPlane {
+    /// The plane through the fan triangle (v0, vi, vi+1) of largest area; `None`
+    /// when every fan triangle is degenerate (the face covers no pixel anyway).
+    pub fn new(poly: &[ScreenVertex], s: u32) -> Option<Self> {
+        let v0 = poly.first()?;
+        let p = |v: &ScreenVertex| (2 * i64::from(v.x), 2 * i64::from(v.y), i64::from(v.q));
+        let (x0, y0, q0) = p(v0);
+        let mut best: Option<(i128, Self)> = None;
+        for pair in poly.get(1..)?.windows(2) {
+            let [v1, v2] = pair else { continue };
+            let ((x1, y1, q1), (x2, y2, q2)) = (p(v1), p(v2));
+            let (dx1, dy1, dq1) = (
+                i128::from(x1 - x0),
+                i128::from(y1 - y0),
+                i128::from(q1 - q0),
+            );
+            let (dx2, dy2, dq2) = (
+                i128::from(x2 - x0),
+                i128::from(y2 - y0),
+                i128::from(q2 - q0),
+            );
+            let den = dx1 * dy2 - dx2 * dy1;
+            if den == 0 || best.is_some_and(|(area, _)| area >= den.abs()) {
+                continue;
+            }
+            let plane = Self {
+                x0,
+                y0,
+                q0,
+                a: dq1 * dy2 - dq2 * dy1,
+                b: dq2 * dx1 - dq1 * dx2,
+                den,
+                s,
+            };
+            best = Some((den.abs(), plane));
+        }
+        best.map(|(_, plane)| plane)
+    }
+
+    /// Nearness at a point in half sub-pixel units, rounded down, clamped to Q1.31.
+    pub fn at(&self, x: i64, y: i64) -> u32 {
+        let n = self.a * i128::from(x - self.x0) + self.b * i128::from(y - self.y0);
+        let q = i128::from(self.q0) + n.checked_div_euclid(self.den).unwrap_or(0);
+        q.clamp(0, 1 << 31) as u32
+    }
+
+    /// Nearness at the centre of pixel (i, j).
+    pub fn at_pixel(&self, i: u16, j: u16) -> u32 {
+        let c = |k: u16| (2 * i64::from(k) + 1) << self.s;
+        self.at(c(i), c(j))
+    }
+
+    /// Change of nearness per pixel along a row, with `STEP_BITS` fraction bits.
+    fn step(&self) -> i64 {
+        let num = self.a << (self.s + 1 + STEP_BITS);
+        // Beyond 2^48 a step leaves the Q1.31 range in one pixel anyway.
+        let limit = 1i128 << 48;
+        num.checked_div_euclid(self.den)
+            .unwrap_or(0)
+            .clamp(-limit, limit) as i64
+    }
+}
+
+/// Depth and face ids of one band of rows; a face's spans go in through
+/// [`FaceSpans`].
+#[derive(Debug)]
+pub(crate) struct ZBand<'s, D> {
+    pub depth: &'s mut [D],
+    /// 0 for no face, else 1 + face index.
+    pub ids: &'s mut [u16],
+    pub width: u16,
+    pub top: u16,
+    pub rows: u16,
+}
+
+impl<D: Depth> ZBand<'_, D> {
+    /// Starts a band at row `top` with `rows` rows: everything far, no face.
+    pub fn reset(&mut self, top: u16, rows: u16) {
+        self.top = top;
+        self.rows = rows;
+        let n = usize::from(self.width) * usize::from(rows);
+        self.ids.iter_mut().take(n).for_each(|id| *id = 0);
+        self.depth
+            .iter_mut()
+            .take(n)
+            .for_each(|d| *d = D::default());
+    }
+
+    /// Index of pixel (x, y) in the band's buffers, if inside.
+    pub fn index(&self, x: u16, y: u16) -> Option<usize> {
+        let row = y.checked_sub(self.top).filter(|r| *r < self.rows)?;
+        (x < self.width).then(|| usize::from(row) * usize::from(self.width) + usize::from(x))
+    }
+}
+
+/// A span sink that depth-tests one face's spans into a [`ZBand`].
+#[derive(Debug)]
+pub(crate) struct FaceSpans<'b, 's, D> {
+    pub band: &'b mut ZBand<'s, D>,
+    pub plane: DepthPlane,
+    /// 1 + face index.
+    pub id: u16,
+    pub viewport: Viewport,
+    /// Spans received, for the statistics.
+    pub spans: u32,
+}
+
+impl<D: Depth> SpanSink for FaceSpans<'_, '_, D> {
+    type Color = BinaryColor;
+    type Error = Infallible;
+
+    fn viewport(&self) -> Viewport {
+        self.viewport
+    }
+
+    fn fill_span(&mut self, span: Span, _: BinaryColor) -> Result<(), Infallible> {
+        self.spans += 1;
+        let Some(start) = self.band.index(span.x0(), span.y()) else {
+            return Ok(());
+        };
+        let len = usize::from(span.len());
+        let step = self.plane.step();
+        // Exact at the span's first pixel centre, then stepped.
+        let mut acc = i64::from(self.plane.at_pixel(span.x0(), span.y())) << STEP_BITS;
+        let depth = self
+            .band
+            .depth
+            .get_mut(start..start + len)
+            .into_iter()
+            .flatten();
+        let ids = self
+            .band
+            .ids
+            .get_mut(start..start + len)
+            .into_iter()
+            .flatten();
+        for (d, id) in depth.zip(ids) {
+            let q = D::from_q((acc >> STEP_BITS).clamp(0, 1 << 31) as u32);
+            // Strictly nearer wins; on equal depth the earlier (lower) face stays.
+            if *id == 0 || q > *d {
+                *d = q;
+                *id = self.id;
+            }
+            acc = acc.saturating_add(step);
+        }
+        Ok(())
+    }
+}
