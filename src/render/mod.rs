@@ -542,3 +542,6 @@ impl Default for MonoPalette {
         }
     }
 }
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,263 @@
+//! Properties of the renderer that need its internals.
+
+extern crate std;
+use std::vec;
+use std::vec::Vec;
+
+use fixed::types::extra::U4;
+
+use super::*;
+use crate::mesh::{HalfEdgeRecord, MeshEdge};
+use crate::{PackedFramebuffer, Projection};
+
+/// Keeps the whole frame's line masks.
+struct Masks {
+    words: usize,
+    visible: Vec<u32>,
+    hidden: Vec<u32>,
+}
+
+impl FrameProbe for Masks {
+    fn row(&mut self, y: u16, _: &[u16], visible: &[u32], hidden: &[u32]) {
+        let at = usize::from(y) * self.words;
+        self.visible[at..at + self.words].copy_from_slice(visible);
+        self.hidden[at..at + self.words].copy_from_slice(hidden);
+    }
+}
+
+fn cube() -> (Vec<[f32; 3]>, Vec<u32>, Vec<u32>) {
+    let v = vec![
+        [-1., -1., -1.],
+        [1., -1., -1.],
+        [1., 1., -1.],
+        [-1., 1., -1.],
+        [-1., -1., 1.],
+        [1., -1., 1.],
+        [1., 1., 1.],
+        [-1., 1., 1.],
+    ];
+    let idx = vec![
+        0, 3, 2, 1, 4, 5, 6, 7, 0, 1, 5, 4, 3, 7, 6, 2, 0, 4, 7, 3, 1, 2, 6, 5,
+    ];
+    (v, idx, (0..=6).map(|f| 4 * f).collect())
+}
+
+fn icosahedron() -> (Vec<[f32; 3]>, Vec<u32>, Vec<u32>) {
+    let t = 1.618_034f32;
+    let v = vec![
+        [-1., t, 0.],
+        [1., t, 0.],
+        [-1., -t, 0.],
+        [1., -t, 0.],
+        [0., -1., t],
+        [0., 1., t],
+        [0., -1., -t],
+        [0., 1., -t],
+        [t, 0., -1.],
+        [t, 0., 1.],
+        [-t, 0., -1.],
+        [-t, 0., 1.],
+    ];
+    let f: [[u32; 3]; 20] = [
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
+    ];
+    (
+        v,
+        f.iter().flatten().copied().collect(),
+        (0..=20).map(|i| 3 * i).collect(),
+    )
+}
+
+/// Renders a 96x64 frame with `band` rows per band; returns the picture and masks.
+fn render(
+    mesh: &Mesh<'_>,
+    adj: &EdgeAdjacency<'_>,
+    camera: &Camera,
+    band: usize,
+    mode: DrawMode,
+) -> (Vec<u8>, Masks) {
+    let mut fb = PackedFramebuffer::<96, 64, { crate::packed_len(96, 64) }>::new();
+    let mut vertices = vec![ProjectedVertex::default(); mesh.vertices().len()];
+    let (mut drawn, mut features) = (vec![0u32; 1], vec![0u32; 1]);
+    let (mut depth, mut ids) = (vec![0u32; 96 * band], vec![0u16; 96 * band]);
+    let mut lines = vec![0u32; 2 * 3 * band];
+    let mut ws = Workspace {
+        vertices: &mut vertices,
+        drawn: &mut drawn,
+        features: &mut features,
+        depth: &mut depth,
+        ids: &mut ids,
+        lines: &mut lines,
+    };
+    let mut masks = Masks {
+        words: 3,
+        visible: vec![0; 3 * 64],
+        hidden: vec![0; 3 * 64],
+    };
+    let settings = Settings {
+        mode,
+        cull: Cull::Auto,
+        pattern: Pattern::PAPER,
+    };
+    let mut renderer = ZBufferRenderer::<U4, 16, 16>::new();
+    let stats = renderer
+        .render(
+            mesh,
+            adj,
+            camera,
+            &settings,
+            &mut ws,
+            &MonoPalette::default(),
+            &mut fb,
+            &mut masks,
+        )
+        .unwrap();
+    assert_eq!(stats.band_rows as usize, band);
+    (fb.as_bytes().to_vec(), masks)
+}
+
+/// The k-th of n viewpoints spread over a sphere of radius 6 (golden-angle spiral).
+fn viewpoint(k: u32, n: u32) -> Camera {
+    let z = 1.0 - 2.0 * (k as f32 + 0.5) / n as f32;
+    let r = crate::camera::sqrt(1.0 - z * z);
+    let a = k as f32 * 2.399_963;
+    let (s, c) = (sin(a), sin(a + core::f32::consts::FRAC_PI_2));
+    let eye = [6.0 * r * c, 6.0 * z, 6.0 * r * s];
+    let up = if z.abs() > 0.9 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
+    let projection = Projection::Perspective { fov_y_deg: 40.0 };
+    Camera::new(eye, [0.0; 3], up, projection, 0.5, 20.0).unwrap()
+}
+
+#[test]
+fn band_height_does_not_change_the_frame() {
+    let (v, idx, off) = icosahedron();
+    let mesh = Mesh::new(&v, &idx, &off).unwrap();
+    let mut weld = vec![0u32; v.len()];
+    let mut scratch = vec![HalfEdgeRecord::default(); idx.len()];
+    let mut store = vec![MeshEdge::default(); idx.len()];
+    let adj = EdgeAdjacency::build(&mesh, 1.0, &mut weld, &mut scratch, &mut store).unwrap();
+    for k in 0..20 {
+        let camera = viewpoint(k, 20);
+        for mode in [DrawMode::Dashed, DrawMode::SurfacesDashed] {
+            let (full, m) = render(&mesh, &adj, &camera, 64, mode);
+            assert!(full.iter().any(|b| *b != 0));
+            for band in [1, 5, 16] {
+                let (banded, mb) = render(&mesh, &adj, &camera, band, mode);
+                assert_eq!(banded, full, "view {k}, {mode:?}, band {band}");
+                assert_eq!(
+                    (mb.visible, mb.hidden),
+                    (m.visible.clone(), m.hidden.clone())
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn convex_solids_never_draw_a_visible_edge_pixel_dashed() {
+    let mut checked = 0usize;
+    for (name, (v, idx, off)) in [("cube", cube()), ("icosahedron", icosahedron())] {
+        let mesh = Mesh::new(&v, &idx, &off).unwrap();
+        let mut weld = vec![0u32; v.len()];
+        let mut scratch = vec![HalfEdgeRecord::default(); idx.len()];
+        let mut store = vec![MeshEdge::default(); idx.len()];
+        // Crease 1 degree: every edge of these solids is a feature edge.
+        let adj = EdgeAdjacency::build(&mesh, 1.0, &mut weld, &mut scratch, &mut store).unwrap();
+        for k in 0..200u32 {
+            let camera = viewpoint(k, 200);
+            let (_, masks) = render(&mesh, &adj, &camera, 16, DrawMode::Dashed);
+            // Walk every visible edge with the renderer's own rasterization.
+            let view = FixedView::new(&camera, 1.7, 96, 64, 4).unwrap();
+            let cache: Vec<ProjectedVertex> = v
+                .iter()
+                .map(|p| {
+                    let clip = view.clip(*p);
+                    let outside = view.outcode(&clip);
+                    let screen = if outside == 0 {
+                        view.project(&clip)
+                    } else {
+                        ScreenVertex::default()
+                    };
+                    ProjectedVertex {
+                        clip,
+                        screen,
+                        outside,
+                    }
+                })
+                .collect();
+            let ctx = FrameCtx {
+                mesh: &mesh,
+                view,
+                s: 4,
+                viewport: Viewport {
+                    width: 96,
+                    height: 64,
+                },
+            };
+            let viewpoint = camera.viewpoint();
+            for edge in adj.edges() {
+                let own_front = edge
+                    .faces
+                    .iter()
+                    .any(|&f| mesh.faces_viewpoint(f as usize, &viewpoint));
+                if !own_front {
+                    continue;
+                }
+                let (a, b) = edge_on_screen(&ctx, &cache, edge).unwrap();
+                walk_segment(&a, &b, 4, 96, 0..64, |p| {
+                    let i = usize::from(p.y) * 3 + usize::from(p.x) / 32;
+                    let on = masks.visible[i] & (1 << (p.x % 32)) != 0;
+                    assert!(
+                        on,
+                        "{name}, view {k}: visible edge {edge:?} judged hidden at {},{}",
+                        p.x, p.y
+                    );
+                    checked += 1;
+                });
+            }
+        }
+    }
+    assert!(
+        checked > 100_000,
+        "the scenes exercise enough pixels: {checked}"
+    );
+}
+
+/// sin for the test's viewpoints, by a short series after range reduction.
+fn sin(x: f32) -> f32 {
+    let tau = 2.0 * core::f32::consts::PI;
+    let mut x = x % tau;
+    if x > core::f32::consts::PI {
+        x -= tau;
+    }
+    let (mut s, mut t) = (0.0f32, x);
+    for k in 0..12 {
+        s += t;
+        let n = (2 * k + 2) as f32;
+        t *= -x * x / (n * (n + 1.0));
+    }
+    s
+}
