@@ -45,6 +45,8 @@ pub use mesh::{
     face_owns_edge, EdgeAdjacency, EdgeKind, HalfEdgeRecord, Mesh, MeshEdge, Viewpoint, MAX_FACES,
 };
 pub use pattern::Pattern;
-pub use render::{Cull, DrawMode, MonoPalette, Settings, Stats, Workspace, ZBufferRenderer};
+pub use render::{
+    Cull, DrawMode, MonoPalette, Palette, Settings, SolidPalette, Stats, Workspace, ZBufferRenderer,
+};
 pub use scan::{FillRule, ScanConverter};
 pub use span::{ContiguousRows, FillSolid, Span, SpanSink, ROW_SEGMENTS};

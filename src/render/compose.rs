@@ -49,6 +49,28 @@ impl Palette for MonoPalette {
     }
 }
 
+/// Any colour type: lines in `line`, every face in `face` (or left untouched when
+/// `None`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SolidPalette<C> {
+    /// Line colour.
+    pub line: C,
+    /// Face colour, or `None` to leave face pixels as they are.
+    pub face: Option<C>,
+}
+
+impl<C: PixelColor> Palette for SolidPalette<C> {
+    type Color = C;
+
+    fn line(&self) -> C {
+        self.line
+    }
+
+    fn face(&self, _: u16, _: u8, _: u16, _: u16) -> Option<C> {
+        self.face
+    }
+}
+
 /// Sees each finished row: face ids (0 none, else 1 + face) and the visible and
 /// hidden line masks (bit k of word w is pixel 32w + k), before the pattern.
 pub trait FrameProbe {

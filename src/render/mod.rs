@@ -18,7 +18,7 @@ use embedded_graphics_core::pixelcolor::{BinaryColor, PixelColor};
 use fixed::types::extra::LeEqU32;
 use heapless::Vec;
 
-pub use compose::{FrameProbe, MonoPalette, Palette};
+pub use compose::{FrameProbe, MonoPalette, Palette, SolidPalette};
 pub use transform::{ClipVertex, ProjectedVertex, ScreenVertex};
 pub use zband::Depth;
 
