@@ -115,25 +115,68 @@ pub(crate) fn walk_segment(
         k_lo = k_lo.max((lo - h).div_euclid(p) - 1);
         k_hi = k_hi.min((hi - h).div_euclid(p) + 1);
     }
+    if k_lo > k_hi {
+        return;
+    }
+    // Minor coordinate v and nearness q at the first centre, then carried from
+    // centre to centre as quotient and remainder: no division per pixel.
+    let c = (2 * k_lo + 1) * h;
+    let mut v = Stepper::new(v0 * du + (c - u0) * dv, du, p * dv);
+    let mut q = Stepper::new((c - u0) * dq, du, p * dq);
     for k in k_lo..=k_hi {
         let c = (2 * k + 1) * h;
-        let t = c - u0;
-        // v at the centre, exactly: floor((v0 du + t dv) / (du p)) is its pixel.
-        let num = v0 * du + t * dv;
-        let m = num.div_euclid(du * p);
-        if m < limit_v.0 || m >= limit_v.1 {
-            continue;
+        // The pixel holding the edge point: floor(v / p).
+        let m = v.quotient >> (s + 1);
+        if m >= limit_v.0 && m < limit_v.1 {
+            let (x, y, px, py) = if x_major {
+                (k, m, c, v.quotient)
+            } else {
+                (m, k, v.quotient, c)
+            };
+            let q = (i64::from(q0) + q.quotient).clamp(0, 1 << 31);
+            pixel(EdgePixel {
+                x: x as u16,
+                y: y as u16,
+                px,
+                py,
+                q: q as u32,
+            });
         }
-        let v = num.div_euclid(du);
-        let q = i64::from(q0) + (t * dq).div_euclid(du);
-        let (x, y, px, py) = if x_major { (k, m, c, v) } else { (m, k, v, c) };
-        pixel(EdgePixel {
-            x: x as u16,
-            y: y as u16,
-            px,
-            py,
-            q: q.clamp(0, 1 << 31) as u32,
-        });
+        v.advance();
+        q.advance();
+    }
+}
+
+/// `floor(n / d)` for `n` growing by `step` each time, `d > 0`, kept as quotient
+/// and remainder so that each step is two adds and a compare.
+#[derive(Debug, Clone, Copy)]
+struct Stepper {
+    quotient: i64,
+    remainder: i64,
+    step_q: i64,
+    step_r: i64,
+    d: i64,
+}
+
+impl Stepper {
+    fn new(n: i64, d: i64, step: i64) -> Self {
+        let d = d.max(1);
+        Self {
+            quotient: n.div_euclid(d),
+            remainder: n.rem_euclid(d),
+            step_q: step.div_euclid(d),
+            step_r: step.rem_euclid(d),
+            d,
+        }
+    }
+
+    fn advance(&mut self) {
+        self.quotient += self.step_q;
+        self.remainder += self.step_r;
+        if self.remainder >= self.d {
+            self.remainder -= self.d;
+            self.quotient += 1;
+        }
     }
 }
 

@@ -334,30 +334,49 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
     ) -> Result<u32, Error<T>> {
         let mut spans = 0;
         let (top, end) = (band.top, band.top + band.rows);
+        let h = 1i32 << ctx.s;
+        let reaches = |lo: i32, hi: i32| {
+            let (first, last) = ((lo - h) >> ctx.s, (hi + h) >> ctx.s);
+            last >= i32::from(top) && first < i32::from(end)
+        };
+        // Reused for every face: a heapless vector moved by value copies its capacity.
+        let mut poly: Vec<ScreenVertex, POLY> = Vec::new();
+        let mut points: Vec<ScreenPoint<Frac>, POLY> = Vec::new();
         for f in 0..ctx.mesh.face_count() {
             if !bit(drawn, f) {
                 continue;
             }
-            let mut poly: Vec<ScreenVertex, POLY> = Vec::new();
+            // Rows the face can reach, from the vertex cache: most faces miss the band.
+            let (mut lo, mut hi, mut outside) = (i32::MAX, i32::MIN, 0u8);
+            for &v in ctx.mesh.face(f) {
+                let p = vertices
+                    .get(v as usize)
+                    .map_or(ProjectedVertex::default(), |p| *p);
+                lo = lo.min(p.screen.y);
+                hi = hi.max(p.screen.y);
+                outside |= p.outside;
+            }
+            if outside == 0 && !reaches(lo, hi) {
+                continue;
+            }
             if !face_polygon(ctx, vertices, f, &mut poly).map_err(Error::widen)? {
                 continue;
             }
-            // Rows the face can reach: skip it quickly when outside the band.
-            let h = 1i32 << ctx.s;
-            let (lo, hi) = poly.iter().fold((i32::MAX, i32::MIN), |(lo, hi), v| {
-                (lo.min(v.y), hi.max(v.y))
-            });
-            let (first, last) = ((lo - h) >> ctx.s, (hi + h) >> ctx.s);
-            if last < i32::from(top) || first >= i32::from(end) {
-                continue;
+            if outside != 0 {
+                let (lo, hi) = poly.iter().fold((i32::MAX, i32::MIN), |(lo, hi), v| {
+                    (lo.min(v.y), hi.max(v.y))
+                });
+                if !reaches(lo, hi) {
+                    continue;
+                }
             }
             let Some(plane) = DepthPlane::new(&poly, ctx.s) else {
                 continue;
             };
-            let points: Vec<ScreenPoint<Frac>, POLY> = poly
-                .iter()
-                .map(|v| ScreenPoint::from_bits(v.x, v.y))
-                .collect();
+            points.clear();
+            for v in &poly {
+                let _ = points.push(ScreenPoint::from_bits(v.x, v.y));
+            }
             let mut sink = FaceSpans {
                 band: &mut *band,
                 plane,
@@ -438,7 +457,7 @@ fn line_pass<D: Depth, const POLY: usize>(
 ) {
     let hide = settings.mode.needs_depth();
     // The last face tested for covering an edge point, with its polygon and plane.
-    let mut cached: Option<(u16, Vec<ScreenVertex, POLY>, Option<DepthPlane>)> = None;
+    let mut cached: (u16, Vec<ScreenVertex, POLY>, Option<DepthPlane>) = (0, Vec::new(), None);
     for (e, edge) in edges.edges().iter().enumerate() {
         if !bit(features, e) {
             continue;
@@ -489,7 +508,7 @@ fn hides<const POLY: usize>(
     edge: &MeshEdge,
     id: u16,
     px: &lines::EdgePixel,
-    cached: &mut Option<(u16, Vec<ScreenVertex, POLY>, Option<DepthPlane>)>,
+    cached: &mut (u16, Vec<ScreenVertex, POLY>, Option<DepthPlane>),
 ) -> bool {
     let f = usize::from(id - 1);
     let own = edge.faces[..(edge.face_count.min(2) as usize)]
@@ -498,16 +517,16 @@ fn hides<const POLY: usize>(
     if own || (edge.kind == EdgeKind::NonManifold && face_owns_edge(ctx.mesh, edge, f)) {
         return false;
     }
-    if cached.as_ref().map(|c| c.0) != Some(id) {
-        let mut poly = Vec::new();
-        if !bit(drawn, f) || !face_polygon(ctx, vertices, f, &mut poly).unwrap_or(false) {
-            *cached = Some((id, Vec::new(), None));
-        } else {
-            let plane = DepthPlane::new(&poly, ctx.s);
-            *cached = Some((id, poly, plane));
+    if cached.0 != id {
+        // Refill the cache in place: the polygon buffer is large, never move it.
+        let (cid, poly, plane) = cached;
+        *cid = id;
+        *plane = None;
+        if bit(drawn, f) && face_polygon(ctx, vertices, f, poly).unwrap_or(false) {
+            *plane = DepthPlane::new(poly, ctx.s);
         }
     }
-    let Some((_, poly, Some(plane))) = cached.as_ref() else {
+    let (_, poly, Some(plane)) = &*cached else {
         return false;
     };
     if !polygon_contains(poly, px.px, px.py) {

@@ -52,7 +52,13 @@ pub(crate) struct DepthPlane {
     a: i128,
     b: i128,
     den: i128,
-    s: u32,
+    /// Fast form for spans, `STEP_BITS` fraction bits: nearness at the centre of
+    /// pixel (`i0`, `j0`) and its change per pixel along x and y.
+    i0: i64,
+    j0: i64,
+    q_ref: i64,
+    dq_dx: i64,
+    dq_dy: i64,
 }
 
 impl DepthPlane {
@@ -87,34 +93,73 @@ impl DepthPlane {
                 a: dq1 * dy2 - dq2 * dy1,
                 b: dq2 * dx1 - dq1 * dx2,
                 den,
-                s,
+                i0: 0,
+                j0: 0,
+                q_ref: 0,
+                dq_dx: 0,
+                dq_dy: 0,
             };
             best = Some((den.abs(), plane));
         }
-        best.map(|(_, plane)| plane)
+        let (_, mut plane) = best?;
+        // The fast form, set up once per face: one exact evaluation and two slopes.
+        // Steeper than 2^47 per pixel leaves the Q1.31 range within a pixel anyway.
+        let limit = 1i128 << 47;
+        let per_pixel = |c: i128| {
+            // 64-bit when it fits (most faces): a 128-bit divide is a long library
+            // call on a Cortex-M4.
+            let shift = s + 1 + STEP_BITS;
+            if let (Ok(c64), Ok(d64)) = (i64::try_from(c), i64::try_from(plane.den)) {
+                if c64.unsigned_abs() < 1u64 << (62 - shift) {
+                    let q = (c64 << shift).checked_div_euclid(d64).unwrap_or(0);
+                    return q.clamp(-(1i64 << 47), 1i64 << 47);
+                }
+            }
+            (c << shift)
+                .checked_div_euclid(plane.den)
+                .unwrap_or(0)
+                .clamp(-limit, limit) as i64
+        };
+        plane.dq_dx = per_pixel(plane.a);
+        plane.dq_dy = per_pixel(plane.b);
+        plane.i0 = x0 >> (s + 1);
+        plane.j0 = y0 >> (s + 1);
+        let centre = |k: i64| (2 * k + 1) << s;
+        plane.q_ref = i64::from(plane.at(centre(plane.i0), centre(plane.j0))) << STEP_BITS;
+        Some(plane)
     }
 
     /// Nearness at a point in half sub-pixel units, rounded down, clamped to Q1.31.
     pub fn at(&self, x: i64, y: i64) -> u32 {
-        let n = self.a * i128::from(x - self.x0) + self.b * i128::from(y - self.y0);
+        let (dx, dy) = (x - self.x0, y - self.y0);
+        // 64-bit when it fits, as in `new`.
+        if let (Ok(a), Ok(b), Ok(den)) = (
+            i64::try_from(self.a),
+            i64::try_from(self.b),
+            i64::try_from(self.den),
+        ) {
+            if let Some(n) = a
+                .checked_mul(dx)
+                .zip(b.checked_mul(dy))
+                .and_then(|(u, v)| u.checked_add(v))
+            {
+                let q = self.q0 + n.checked_div_euclid(den).unwrap_or(0);
+                return q.clamp(0, 1 << 31) as u32;
+            }
+        }
+        let n = self.a * i128::from(dx) + self.b * i128::from(dy);
         let q = i128::from(self.q0) + n.checked_div_euclid(self.den).unwrap_or(0);
         q.clamp(0, 1 << 31) as u32
     }
 
-    /// Nearness at the centre of pixel (i, j).
-    pub fn at_pixel(&self, i: u16, j: u16) -> u32 {
-        let c = |k: u16| (2 * i64::from(k) + 1) << self.s;
-        self.at(c(i), c(j))
-    }
-
-    /// Change of nearness per pixel along a row, with `STEP_BITS` fraction bits.
-    fn step(&self) -> i64 {
-        let num = self.a << (self.s + 1 + STEP_BITS);
-        // Beyond 2^48 a step leaves the Q1.31 range in one pixel anyway.
-        let limit = 1i128 << 48;
-        num.checked_div_euclid(self.den)
-            .unwrap_or(0)
-            .clamp(-limit, limit) as i64
+    /// Nearness at the centre of pixel (i, j), with `STEP_BITS` fraction bits:
+    /// evaluated afresh from the plane (no error carried from other spans), within
+    /// a few units of `2^-(31 + STEP_BITS)` per pixel of distance from the face.
+    fn at_pixel(&self, i: u16, j: u16) -> i64 {
+        let (di, dj) = (i64::from(i) - self.i0, i64::from(j) - self.j0);
+        self.q_ref
+            .saturating_add(self.dq_dx.saturating_mul(di))
+            .saturating_add(self.dq_dy.saturating_mul(dj))
     }
 }
 
@@ -176,29 +221,24 @@ impl<D: Depth> SpanSink for FaceSpans<'_, '_, D> {
             return Ok(());
         };
         let len = usize::from(span.len());
-        let step = self.plane.step();
-        // Exact at the span's first pixel centre, then stepped.
-        let mut acc = i64::from(self.plane.at_pixel(span.x0(), span.y())) << STEP_BITS;
-        let depth = self
-            .band
-            .depth
-            .get_mut(start..start + len)
-            .into_iter()
-            .flatten();
-        let ids = self
-            .band
-            .ids
-            .get_mut(start..start + len)
-            .into_iter()
-            .flatten();
-        for (d, id) in depth.zip(ids) {
+        let step = self.plane.dq_dx;
+        // Evaluated at the span's first pixel centre, then one add a pixel.
+        let mut acc = self.plane.at_pixel(span.x0(), span.y());
+        let (Some(depth), Some(ids)) = (
+            self.band.depth.get_mut(start..start + len),
+            self.band.ids.get_mut(start..start + len),
+        ) else {
+            return Ok(());
+        };
+        for (d, id) in depth.iter_mut().zip(ids.iter_mut()) {
             let q = D::from_q((acc >> STEP_BITS).clamp(0, 1 << 31) as u32);
             // Strictly nearer wins; on equal depth the earlier (lower) face stays.
+            // An empty pixel (id 0) takes any face, so depth needs no clearing.
             if *id == 0 || q > *d {
                 *d = q;
                 *id = self.id;
             }
-            acc = acc.saturating_add(step);
+            acc += step;
         }
         Ok(())
     }
