@@ -7,8 +7,8 @@ use fixed::types::extra::{LeEqU32, U0, U1, U10, U11, U12, U2, U3, U4, U5, U6, U7
 use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
 use pbuffer::render::{Depth, FrameProbe, ProjectedVertex};
 use pbuffer::{
-    Camera, Cull, DrawMode, MonoPalette, Pattern, Projection, Settings, Span, SpanSink,
-    Viewport, Workspace, ZBufferRenderer,
+    Camera, Cull, DrawMode, MonoPalette, Pattern, Projection, Settings, Span, SpanSink, Viewport,
+    Workspace, ZBufferRenderer,
 };
 
 use crate::frame::{CameraSpec, CullSpec, Frame, MeshData, ModeSpec, ProjectionSpec, RenderSpec};
@@ -97,11 +97,7 @@ pub struct MeshArrays {
 
 impl MeshArrays {
     pub fn new(mesh: &MeshData) -> Self {
-        let vertices = mesh
-            .vertices
-            .iter()
-            .map(|v| v.map(|c| c as f32))
-            .collect();
+        let vertices = mesh.vertices.iter().map(|v| v.map(|c| c as f32)).collect();
         let mut indices = Vec::new();
         let mut offsets = vec![0u32];
         for f in &mesh.faces {
@@ -157,7 +153,11 @@ pub fn render_frame(mesh: &MeshData, cam: &CameraSpec, spec: &RenderSpec) -> Res
     }
 }
 
-fn render_s<Frac: LeEqU32>(mesh: &MeshData, cam: &CameraSpec, spec: &RenderSpec) -> Result<Frame, String> {
+fn render_s<Frac: LeEqU32>(
+    mesh: &MeshData,
+    cam: &CameraSpec,
+    spec: &RenderSpec,
+) -> Result<Frame, String> {
     match spec.depth_bits {
         16 => render_sd::<Frac, u16>(mesh, cam, spec),
         32 => render_sd::<Frac, u32>(mesh, cam, spec),
@@ -176,10 +176,17 @@ fn render_sd<Frac: LeEqU32, D: Depth>(
     let mut weld = vec![0u32; arrays.vertices.len()];
     let mut scratch = vec![HalfEdgeRecord::default(); arrays.indices.len()];
     let mut edge_store = vec![MeshEdge::default(); arrays.indices.len()];
-    let adjacency = EdgeAdjacency::build(&mesh, spec.crease_deg as f32, &mut weld, &mut scratch, &mut edge_store)
-        .map_err(|e| format!("adjacency: {e}"))?;
+    let adjacency = EdgeAdjacency::build(
+        &mesh,
+        spec.crease_deg as f32,
+        &mut weld,
+        &mut scratch,
+        &mut edge_store,
+    )
+    .map_err(|e| format!("adjacency: {e}"))?;
     let camera = camera(cam)?;
-    let pattern = Pattern::by_name(&spec.pattern).ok_or_else(|| format!("--pattern {}: unknown", spec.pattern))?;
+    let pattern = Pattern::by_name(&spec.pattern)
+        .ok_or_else(|| format!("--pattern {}: unknown", spec.pattern))?;
     let settings = Settings {
         mode: match spec.mode {
             ModeSpec::Wireframe => DrawMode::Wireframe,
@@ -201,8 +208,9 @@ fn render_sd<Frac: LeEqU32, D: Depth>(
     let mut vertices = vec![ProjectedVertex::default(); arrays.vertices.len()];
     let mut drawn = vec![0u32; mesh.face_count().div_ceil(32)];
     let mut features = vec![0u32; adjacency.edges().len().div_ceil(32)];
-    let mut depth = vec![D::default(); w * band];
-    let mut ids = vec![0u16; w * band];
+    let stored = usize::from(pbuffer::render::storage_rows(band as u16, h as u16));
+    let mut depth = vec![D::default(); w * stored];
+    let mut ids = vec![0u16; w * stored];
     let mut lines = vec![0u32; 2 * row_words * band];
     let mut ws = Workspace {
         vertices: &mut vertices,
@@ -225,7 +233,16 @@ fn render_sd<Frac: LeEqU32, D: Depth>(
     };
     let start = Instant::now();
     let stats = renderer
-        .render(&mesh, &adjacency, &camera, &settings, &mut ws, &MonoPalette::default(), &mut target, &mut probe)
+        .render(
+            &mesh,
+            &adjacency,
+            &camera,
+            &settings,
+            &mut ws,
+            &MonoPalette::default(),
+            &mut target,
+            &mut probe,
+        )
         .map_err(|e| format!("render: {e}"))?;
     let time_us = start.elapsed().as_micros() as u64;
     let working = lent + std::mem::size_of::<ZBufferRenderer<Frac, EDGES, POLY>>();
@@ -242,7 +259,10 @@ fn render_sd<Frac: LeEqU32, D: Depth>(
             ("spans".into(), u64::from(stats.spans)),
             ("bands".into(), u64::from(stats.bands)),
             ("band_rows".into(), u64::from(stats.band_rows)),
-            ("depth_buffer_bytes".into(), u64::from(stats.depth_buffer_bytes)),
+            (
+                "depth_buffer_bytes".into(),
+                u64::from(stats.depth_buffer_bytes),
+            ),
             ("working_ram_bytes".into(), working as u64),
             ("time_us".into(), time_us),
         ],

@@ -112,8 +112,11 @@ pub(crate) fn emit_band<D, K: SpanSink, P: Palette<Color = K::Color>, R: FramePr
     let mut shade_of: (u16, u8) = (0, 0);
     for r in 0..band.rows {
         let y = band.top + r;
-        let start = usize::from(r) * width;
-        let ids = band.ids.get(start..start + width).unwrap_or(&[]);
+        let start = band.index(0, y).unwrap_or(usize::MAX);
+        let ids = band
+            .ids
+            .get(start..start.saturating_add(width))
+            .unwrap_or(&[]);
         let (visible, hidden) = masks.row(r);
         probe.row(y, ids, visible, hidden);
         let line_word = |k: usize| -> u32 {

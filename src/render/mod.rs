@@ -84,10 +84,17 @@ pub struct Settings {
     pub pattern: Pattern,
 }
 
+/// Rows of depth and id storage for bands of `band_rows` rows in a frame `height`
+/// high: the band plus a one-row apron above and below, or the whole frame.
+pub fn storage_rows(band_rows: u16, height: u16) -> u16 {
+    ZBand::<u32>::rows_needed(band_rows.max(1), height)
+}
+
 /// Storage the caller lends for one frame. Sizes: `vertices` >= the mesh's vertex
 /// count; `drawn` >= faces / 32 words; `features` >= edges / 32 words; `depth` and
-/// `ids` >= width x band rows; `lines` >= 2 x ceil(width / 32) x band rows. The band
-/// height is `depth.len() / width` (a full frame when it reaches the height).
+/// `ids` >= width x [`storage_rows`]; `lines` >= 2 x ceil(width / 32) x band rows.
+/// The band height follows from `depth.len() / width` (the whole frame when that
+/// reaches the height, else two rows fewer: the apron).
 #[derive(Debug)]
 pub struct Workspace<'s, D> {
     /// The per-frame vertex cache.
@@ -216,14 +223,21 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
         let faces = mesh.face_count();
         let row_words = usize::from(width).div_ceil(32);
         let w = usize::from(width).max(1);
-        let band_rows = (ws.depth.len().min(ws.ids.len()) / w)
-            .min(ws.lines.len() / (2 * row_words).max(1))
-            .min(usize::from(height)) as u16;
+        // Storage rows: the band's own rows plus a one-row apron above and below,
+        // unless one band holds the whole frame.
+        let stored = (ws.depth.len().min(ws.ids.len()) / w).min(usize::from(u16::MAX)) as u16;
+        let band_rows = if stored >= height {
+            height
+        } else {
+            stored.saturating_sub(2)
+        }
+        .min((ws.lines.len() / (2 * row_words).max(1)).min(usize::from(height)) as u16);
         need(mesh.vertices().len(), ws.vertices.len()).map_err(Error::widen)?;
         need(faces.div_ceil(32), ws.drawn.len()).map_err(Error::widen)?;
         need(edges.edges().len().div_ceil(32), ws.features.len()).map_err(Error::widen)?;
         if height > 0 && band_rows == 0 {
-            need(w, ws.depth.len().min(ws.ids.len())).map_err(Error::widen)?;
+            let rows = usize::from(ZBand::<D>::rows_needed(1, height));
+            need(rows * w, ws.depth.len().min(ws.ids.len())).map_err(Error::widen)?;
             need(2 * row_words, ws.lines.len()).map_err(Error::widen)?;
         }
         let max_abs = mesh
@@ -255,7 +269,9 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
         let mut stats = Stats {
             faces: faces as u32,
             band_rows: u32::from(band_rows),
-            depth_buffer_bytes: (usize::from(band_rows) * w * size_of::<D>()) as u32,
+            depth_buffer_bytes: (usize::from(ZBand::<D>::rows_needed(band_rows, height))
+                * w
+                * size_of::<D>()) as u32,
             ..Stats::default()
         };
         for f in 0..faces {
@@ -294,6 +310,8 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
             width,
             top: 0,
             rows: 0,
+            first: 0,
+            held: 0,
         };
         let mut masks = LineMasks {
             words: lines,
@@ -303,7 +321,7 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
         let mut top = 0u16;
         while top < height && band_rows > 0 {
             let rows = band_rows.min(height - top);
-            band.reset(top, rows);
+            band.reset(top, rows, height);
             masks.reset(rows);
             stats.bands += 1;
             if settings.mode.needs_depth() {
@@ -333,7 +351,8 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
         band: &mut ZBand<'_, D>,
     ) -> Result<u32, Error<T>> {
         let mut spans = 0;
-        let (top, end) = (band.top, band.top + band.rows);
+        // Faces are walked over the apron too: the line test looks there.
+        let (top, end) = (band.first, band.first + band.held);
         let h = 1i32 << ctx.s;
         let reaches = |lo: i32, hi: i32| {
             let (first, last) = ((lo - h) >> ctx.s, (hi + h) >> ctx.s);
@@ -457,7 +476,7 @@ fn line_pass<D: Depth, const POLY: usize>(
 ) {
     let hide = settings.mode.needs_depth();
     // The last face tested for covering an edge point, with its polygon and plane.
-    let mut cached: (u16, Vec<ScreenVertex, POLY>, Option<DepthPlane>) = (0, Vec::new(), None);
+    let mut cache = FaceCache::<POLY>::new();
     for (e, edge) in edges.edges().iter().enumerate() {
         if !bit(features, e) {
             continue;
@@ -467,11 +486,7 @@ fn line_pass<D: Depth, const POLY: usize>(
         };
         let rows = band.top..band.top + band.rows;
         walk_segment(&a, &b, ctx.s, ctx.viewport.width, rows, |px| {
-            let hidden = hide
-                && band.index(px.x, px.y).is_some_and(|i| {
-                    let id = band.ids.get(i).copied().unwrap_or(0);
-                    id != 0 && hides(ctx, vertices, drawn, edge, id, &px, &mut cached)
-                });
+            let hidden = hide && hidden(ctx, vertices, drawn, edge, band, &px, &mut cache);
             masks.set(px.x, px.y - band.top, hidden);
         });
     }
@@ -499,42 +514,136 @@ fn edge_on_screen(
     Some((ctx.view.project(&first), ctx.view.project(&last)))
 }
 
-/// True when face `id - 1`, the nearest at the pixel's centre, hides the edge point:
-/// it is not one of the edge's own faces, covers the point and is strictly nearer.
-fn hides<const POLY: usize>(
+/// The last two faces tested by the line pass: polygon and depth plane.
+struct FaceCache<const POLY: usize> {
+    slots: [(u16, Vec<ScreenVertex, POLY>, Option<DepthPlane>); 2],
+    next: usize,
+}
+
+impl<const POLY: usize> FaceCache<POLY> {
+    fn new() -> Self {
+        Self {
+            slots: [(0, Vec::new(), None), (0, Vec::new(), None)],
+            next: 0,
+        }
+    }
+
+    /// Slot of face `id` (1 + index), filled in place when missing: the polygon
+    /// buffers are large, so they never move.
+    fn get(
+        &mut self,
+        ctx: &FrameCtx<'_, '_>,
+        vertices: &[ProjectedVertex],
+        drawn: &[u32],
+        id: u16,
+    ) -> &(u16, Vec<ScreenVertex, POLY>, Option<DepthPlane>) {
+        let k = match self.slots.iter().position(|slot| slot.0 == id) {
+            Some(k) => k,
+            None => {
+                let k = self.next;
+                self.next ^= 1;
+                let (cid, poly, plane) = &mut self.slots[k];
+                let f = usize::from(id - 1);
+                *cid = id;
+                *plane = None;
+                if bit(drawn, f) && face_polygon(ctx, vertices, f, poly).unwrap_or(false) {
+                    *plane = DepthPlane::new(poly, ctx.s);
+                }
+                k
+            }
+        };
+        &self.slots[k]
+    }
+}
+
+/// Whether the edge point of `px` is hidden. The face nearest at the pixel centre
+/// decides, or, when it does not contain the edge point (up to half a pixel off the
+/// centre), the face nearest at the neighbouring centre on that side, if that one
+/// contains it. A face that contains the point hides it when nearer by a small
+/// margin; the centre's face extended to the point needs a wide one (see [`nearer`]).
+fn hidden<D, const POLY: usize>(
     ctx: &FrameCtx<'_, '_>,
     vertices: &[ProjectedVertex],
     drawn: &[u32],
     edge: &MeshEdge,
-    id: u16,
+    band: &ZBand<'_, D>,
     px: &lines::EdgePixel,
-    cached: &mut (u16, Vec<ScreenVertex, POLY>, Option<DepthPlane>),
+    cache: &mut FaceCache<POLY>,
 ) -> bool {
-    let f = usize::from(id - 1);
-    let own = edge.faces[..(edge.face_count.min(2) as usize)]
-        .iter()
-        .any(|&g| g as usize == f);
-    if own || (edge.kind == EdgeKind::NonManifold && face_owns_edge(ctx.mesh, edge, f)) {
-        return false;
-    }
-    if cached.0 != id {
-        // Refill the cache in place: the polygon buffer is large, never move it.
-        let (cid, poly, plane) = cached;
-        *cid = id;
-        *plane = None;
-        if bit(drawn, f) && face_polygon(ctx, vertices, f, poly).unwrap_or(false) {
-            *plane = DepthPlane::new(poly, ctx.s);
+    let own = |id: u16| {
+        let f = usize::from(id - 1);
+        edge.faces[..(edge.face_count.min(2) as usize)]
+            .iter()
+            .any(|&g| g as usize == f)
+            || (edge.kind == EdgeKind::NonManifold && face_owns_edge(ctx.mesh, edge, f))
+    };
+    let centre = |k: u16| (2 * i64::from(k) + 1) << ctx.s;
+    // The neighbour on the side of the edge point (the minor axis of the edge).
+    let (dx, dy) = (px.px - centre(px.x), px.py - centre(px.y));
+    let step = |d: i64, k: u16| match d.signum() {
+        -1 => k.checked_sub(1),
+        1 => k.checked_add(1),
+        _ => None,
+    };
+    let beside = if dy != 0 {
+        step(dy, px.y).map(|y| band.id(px.x, y))
+    } else {
+        step(dx, px.x).map(|x| band.id(x, px.y))
+    };
+    let nearest = band.id(px.x, px.y);
+    let mut extended = None;
+    for id in [Some(nearest), beside]
+        .into_iter()
+        .flatten()
+        .filter(|&id| id != 0)
+    {
+        if own(id) {
+            return false;
+        }
+        let (_, poly, plane) = cache.get(ctx, vertices, drawn, id);
+        let Some(plane) = *plane else { continue };
+        if polygon_contains(poly, px.px, px.py) {
+            return nearer(&plane, px, REACH_COVERING);
+        }
+        // Only the face at the pixel centre is extended to the point; a neighbour
+        // counts only where it covers the point.
+        if id == nearest {
+            extended = Some((plane, id));
         }
     }
-    let (_, poly, Some(plane)) = &*cached else {
-        return false;
-    };
-    if !polygon_contains(poly, px.px, px.py) {
-        return false;
+    match extended {
+        // Extended to the point and sharing a vertex with the edge, it cannot say:
+        // beside a vertex every incident face passes close to the edge.
+        Some((plane, id)) if !touches(ctx.mesh, edge, usize::from(id - 1)) => {
+            nearer(&plane, px, REACH_EXTENDED)
+        }
+        _ => false,
     }
-    // "Strictly nearer", beyond the rounding of fixed-point depth.
-    let eps = (px.q >> 16).max(1 << 8);
+}
+
+/// True when `plane` is strictly nearer than the edge point, beyond the uncertainty
+/// of sampling at pixel centres: the rounding of fixed-point depth, plus `reach`
+/// sixteenths of the plane's depth change over one pixel. This also keeps an edge
+/// that lies in another face's plane visible: equal depth does not hide.
+fn nearer(plane: &DepthPlane, px: &lines::EdgePixel, reach: u64) -> bool {
+    let slope = (u64::from(plane.change_per_pixel()) * reach) >> 4;
+    let eps = (px.q >> 16).max(1 << 8) + slope.min(1 << 31) as u32;
     plane.at(px.px, px.py) > px.q.saturating_add(eps)
+}
+
+/// Depth margins of the line test, in sixteenths of a pixel's depth change along the
+/// hiding face. A face that covers the edge point: only the point's snapping is
+/// uncertain. A face extended to the point: a grazing face beside a silhouette,
+/// extended, passes just in front of its edge. Both were chosen against the f64
+/// reference (`host_tests/tests/pipeline_vs_reference.rs`).
+const REACH_COVERING: u64 = 1;
+const REACH_EXTENDED: u64 = 32;
+
+/// True when face `f` has a vertex at the position of one of `edge`'s ends.
+fn touches(mesh: &Mesh<'_>, edge: &MeshEdge, f: usize) -> bool {
+    let key = |v: u32| mesh.vertices().get(v as usize).map(|p| p.map(f32::to_bits));
+    let ends = [key(edge.a), key(edge.b)];
+    mesh.face(f).iter().any(|&v| ends.contains(&key(v)))
 }
 
 impl Viewpoint {

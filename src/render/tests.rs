@@ -98,7 +98,8 @@ fn render(
     let mut fb = PackedFramebuffer::<96, 64, { crate::packed_len(96, 64) }>::new();
     let mut vertices = vec![ProjectedVertex::default(); mesh.vertices().len()];
     let (mut drawn, mut features) = (vec![0u32; 1], vec![0u32; 1]);
-    let (mut depth, mut ids) = (vec![0u32; 96 * band], vec![0u16; 96 * band]);
+    let stored = usize::from(storage_rows(band as u16, 64));
+    let (mut depth, mut ids) = (vec![0u32; 96 * stored], vec![0u16; 96 * stored]);
     let mut lines = vec![0u32; 2 * 3 * band];
     let mut ws = Workspace {
         vertices: &mut vertices,

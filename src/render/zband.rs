@@ -59,6 +59,10 @@ pub(crate) struct DepthPlane {
     q_ref: i64,
     dq_dx: i64,
     dq_dy: i64,
+    /// The vertices' nearness range: the plane is never extrapolated beyond it
+    /// (a steep sliver's plane at a pixel centre just outside it would be).
+    q_min: i64,
+    q_max: i64,
 }
 
 impl DepthPlane {
@@ -98,10 +102,17 @@ impl DepthPlane {
                 q_ref: 0,
                 dq_dx: 0,
                 dq_dy: 0,
+                q_min: 0,
+                q_max: 0,
             };
             best = Some((den.abs(), plane));
         }
         let (_, mut plane) = best?;
+        let (q_min, q_max) = poly
+            .iter()
+            .fold((u32::MAX, 0), |(lo, hi), v| (lo.min(v.q), hi.max(v.q)));
+        plane.q_min = i64::from(q_min) << STEP_BITS;
+        plane.q_max = i64::from(q_max) << STEP_BITS;
         // The fast form, set up once per face: one exact evaluation and two slopes.
         // Steeper than 2^47 per pixel leaves the Q1.31 range within a pixel anyway.
         let limit = 1i128 << 47;
@@ -125,12 +136,19 @@ impl DepthPlane {
         plane.i0 = x0 >> (s + 1);
         plane.j0 = y0 >> (s + 1);
         let centre = |k: i64| (2 * k + 1) << s;
-        plane.q_ref = i64::from(plane.at(centre(plane.i0), centre(plane.j0))) << STEP_BITS;
+        plane.q_ref = plane.plane_at(centre(plane.i0), centre(plane.j0)) << STEP_BITS;
         Some(plane)
     }
 
-    /// Nearness at a point in half sub-pixel units, rounded down, clamped to Q1.31.
+    /// Nearness at a point in half sub-pixel units, rounded down, clamped to the
+    /// range of the face's vertices.
     pub fn at(&self, x: i64, y: i64) -> u32 {
+        let q = self.plane_at(x, y) << STEP_BITS;
+        (q.clamp(self.q_min, self.q_max) >> STEP_BITS) as u32
+    }
+
+    /// The plane's nearness at a point, unclamped.
+    fn plane_at(&self, x: i64, y: i64) -> i64 {
         let (dx, dy) = (x - self.x0, y - self.y0);
         // 64-bit when it fits, as in `new`.
         if let (Ok(a), Ok(b), Ok(den)) = (
@@ -143,13 +161,18 @@ impl DepthPlane {
                 .zip(b.checked_mul(dy))
                 .and_then(|(u, v)| u.checked_add(v))
             {
-                let q = self.q0 + n.checked_div_euclid(den).unwrap_or(0);
-                return q.clamp(0, 1 << 31) as u32;
+                return self.q0 + n.checked_div_euclid(den).unwrap_or(0);
             }
         }
         let n = self.a * i128::from(dx) + self.b * i128::from(dy);
         let q = i128::from(self.q0) + n.checked_div_euclid(self.den).unwrap_or(0);
-        q.clamp(0, 1 << 31) as u32
+        q.clamp(-(1 << 40), 1 << 40) as i64
+    }
+
+    /// How much the nearness changes over one pixel (the L1 norm of the gradient).
+    pub fn change_per_pixel(&self) -> u32 {
+        let sum = (self.dq_dx.unsigned_abs() + self.dq_dy.unsigned_abs()) >> STEP_BITS;
+        sum.min(1 << 31) as u32
     }
 
     /// Nearness at the centre of pixel (i, j), with `STEP_BITS` fraction bits:
@@ -163,35 +186,61 @@ impl DepthPlane {
     }
 }
 
-/// Depth and face ids of one band of rows; a face's spans go in through
-/// [`FaceSpans`].
+/// Depth and face ids of one band of rows, plus an apron of one row above and below
+/// (inside the frame) so that the line test can look at a pixel's vertical neighbour
+/// whatever the band height. Faces' spans go in through [`FaceSpans`].
 #[derive(Debug)]
 pub(crate) struct ZBand<'s, D> {
     pub depth: &'s mut [D],
     /// 0 for no face, else 1 + face index.
     pub ids: &'s mut [u16],
     pub width: u16,
+    /// The band's own rows: `top .. top + rows`.
     pub top: u16,
     pub rows: u16,
+    /// The rows held: `first .. first + held`, the own rows and the apron.
+    pub first: u16,
+    pub held: u16,
 }
 
 impl<D: Depth> ZBand<'_, D> {
-    /// Starts a band at row `top` with `rows` rows: everything far, no face.
-    pub fn reset(&mut self, top: u16, rows: u16) {
-        self.top = top;
-        self.rows = rows;
-        let n = usize::from(self.width) * usize::from(rows);
-        self.ids.iter_mut().take(n).for_each(|id| *id = 0);
-        self.depth
-            .iter_mut()
-            .take(n)
-            .for_each(|d| *d = D::default());
+    /// Rows of storage a band of `rows` own rows needs in a frame `height` high.
+    pub fn rows_needed(rows: u16, height: u16) -> u16 {
+        if rows >= height {
+            height
+        } else {
+            rows + 2
+        }
     }
 
-    /// Index of pixel (x, y) in the band's buffers, if inside.
+    /// Starts the band of rows `top .. top + rows` of a frame `height` high: no face
+    /// anywhere. Depth is left as it is: a pixel without a face takes any face's
+    /// depth (see [`FaceSpans`]).
+    pub fn reset(&mut self, top: u16, rows: u16, height: u16) {
+        self.top = top;
+        self.rows = rows;
+        self.first = top.saturating_sub(1);
+        self.held = (top + rows + 1).min(height) - self.first;
+        let n = usize::from(self.width) * usize::from(self.held);
+        if let Some(ids) = self.ids.get_mut(..n) {
+            ids.fill(0);
+        }
+    }
+}
+
+impl<D> ZBand<'_, D> {
+    /// Index of pixel (x, y) in the band's buffers, if held (apron included).
     pub fn index(&self, x: u16, y: u16) -> Option<usize> {
-        let row = y.checked_sub(self.top).filter(|r| *r < self.rows)?;
+        let row = y.checked_sub(self.first).filter(|r| *r < self.held)?;
         (x < self.width).then(|| usize::from(row) * usize::from(self.width) + usize::from(x))
+    }
+
+    /// The face id at pixel (x, y), 0 when none or not held.
+    pub fn id(&self, x: u16, y: u16) -> u16 {
+        self.index(x, y)
+            .and_then(|i| self.ids.get(i))
+            .copied()
+            .unwrap_or(0)
     }
 }
 
@@ -222,6 +271,7 @@ impl<D: Depth> SpanSink for FaceSpans<'_, '_, D> {
         };
         let len = usize::from(span.len());
         let step = self.plane.dq_dx;
+        let (q_min, q_max) = (self.plane.q_min, self.plane.q_max);
         // Evaluated at the span's first pixel centre, then one add a pixel.
         let mut acc = self.plane.at_pixel(span.x0(), span.y());
         let (Some(depth), Some(ids)) = (
@@ -231,7 +281,7 @@ impl<D: Depth> SpanSink for FaceSpans<'_, '_, D> {
             return Ok(());
         };
         for (d, id) in depth.iter_mut().zip(ids.iter_mut()) {
-            let q = D::from_q((acc >> STEP_BITS).clamp(0, 1 << 31) as u32);
+            let q = D::from_q((acc.clamp(q_min, q_max) >> STEP_BITS) as u32);
             // Strictly nearer wins; on equal depth the earlier (lower) face stays.
             // An empty pixel (id 0) takes any face, so depth needs no clearing.
             if *id == 0 || q > *d {

@@ -3,7 +3,13 @@
 //!
 //! ```text
 //! cargo run --release -p host_tests --bin bench [-- --markdown] [-- --jobs N]
+//! cargo run --release -p host_tests --bin bench -- --scene3d [--markdown]
 //! ```
+//!
+//! `--scene3d` runs the 3-D section instead: Suzanne at 400 x 240 with dashed hidden
+//! lines, the library's `ZBufferRenderer` (band heights 8, 32, 240; only the `render`
+//! call measured) against the plain f32 P-buffer baseline (`host_tests::baseline`;
+//! only the frame measured, welding and adjacency done beforehand), in the same run.
 //!
 //! The binary re-executes itself under `valgrind --tool=callgrind` once per measurement
 //! (`--child ID`), with collection switched on only inside [`measured_region`], and reads
@@ -456,6 +462,18 @@ fn job_id(set: Set, v: Variant) -> String {
 }
 
 fn child(id: &str) -> ExitCode {
+    if let Some(name) = id.strip_prefix("scene3d/") {
+        return match scene3d::child(name) {
+            Ok(bytes) => {
+                println!("pixels={}", count_set(&bytes, WIDTH, HEIGHT));
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("bench: {e}");
+                ExitCode::from(2)
+            }
+        };
+    }
     let parsed = id
         .split_once('/')
         .and_then(|(s, v)| Some((Set::from_key(s)?, Variant::from_key(v)?)));
@@ -541,6 +559,371 @@ fn ratio(a: u64, b: u64) -> String {
     }
 }
 
+// ---------------------------------------------------------------- 3-D scene (--scene3d)
+
+/// The 3-D benchmark: Suzanne (../shared/models/suzanne.obj), fitted camera, 400 x 240,
+/// dashed hidden lines, S = 4, 32-bit depth, the `paper` pattern.
+mod scene3d {
+    use super::{measured_region, Frame as Packed400x240};
+    use fixed::types::extra::U4;
+    use host_tests::baseline::{prepare_baseline, render_prepared};
+    use host_tests::fit::fit_camera;
+    use host_tests::frame::{CameraSpec, MeshData, ProjectionSpec, RenderSpec};
+    use host_tests::obj::load_obj;
+    use host_tests::pipeline::{render_frame, MeshArrays};
+    use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
+    use pbuffer::render::ProjectedVertex;
+    use pbuffer::{
+        Camera, Cull, DrawMode, MonoPalette, Pattern, Projection, Settings, Workspace,
+        ZBufferRenderer,
+    };
+    use std::path::PathBuf;
+
+    /// Band heights measured.
+    pub const BANDS: [usize; 3] = [8, 32, 240];
+
+    pub fn model_path() -> PathBuf {
+        let manifest = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+        manifest
+            .parent()
+            .unwrap_or(manifest)
+            .join("../shared/models/suzanne.obj")
+    }
+
+    pub fn scene() -> Result<(MeshData, CameraSpec), String> {
+        let mesh = load_obj(&model_path())?;
+        let cam = fit_camera(&mesh, 400, 240);
+        Ok((mesh, cam))
+    }
+
+    pub fn spec(band: usize) -> RenderSpec {
+        RenderSpec {
+            band,
+            ..RenderSpec::default()
+        }
+    }
+
+    /// The library's frame through `host_tests::pipeline::render_frame` (for the
+    /// figures and the checks, not measured).
+    pub fn library_frame(band: usize) -> Result<host_tests::frame::Frame, String> {
+        let (mesh, cam) = scene()?;
+        render_frame(&mesh, &cam, &spec(band))
+    }
+
+    /// The library as firmware calls it: mesh, adjacency, camera and workspace set up
+    /// beforehand; only `ZBufferRenderer::render` into a `PackedFramebuffer<400, 240>`
+    /// (no probe) is inside the measured region. Returns the packed frame.
+    pub fn pbuffer_measured(band: usize) -> Result<Vec<u8>, String> {
+        let (data, cam) = scene()?;
+        let spec = spec(band);
+        let arrays = MeshArrays::new(&data);
+        let mesh = Mesh::new(&arrays.vertices, &arrays.indices, &arrays.offsets)
+            .map_err(|e| format!("mesh: {e}"))?;
+        let mut weld = vec![0u32; arrays.vertices.len()];
+        let mut scratch = vec![HalfEdgeRecord::default(); arrays.indices.len()];
+        let mut edge_store = vec![MeshEdge::default(); arrays.indices.len()];
+        let adjacency = EdgeAdjacency::build(
+            &mesh,
+            spec.crease_deg as f32,
+            &mut weld,
+            &mut scratch,
+            &mut edge_store,
+        )
+        .map_err(|e| format!("adjacency: {e}"))?;
+        let f = |v: [f64; 3]| v.map(|c| c as f32);
+        let ProjectionSpec::Perspective { fov_deg } = cam.projection else {
+            return Err("the fitted camera is perspective".into());
+        };
+        let camera = Camera::new(
+            f(cam.eye),
+            f(cam.target),
+            f(cam.up),
+            Projection::Perspective {
+                fov_y_deg: fov_deg as f32,
+            },
+            cam.near as f32,
+            cam.far as f32,
+        )
+        .map_err(|e| format!("camera: {e}"))?;
+        let settings = Settings {
+            mode: DrawMode::Dashed,
+            cull: Cull::Auto,
+            pattern: Pattern::by_name(&spec.pattern).ok_or("pattern")?,
+        };
+        let (w, band) = (spec.width, spec.band);
+        let row_words = w.div_ceil(32);
+        let mut vertices = vec![ProjectedVertex::default(); arrays.vertices.len()];
+        let mut drawn = vec![0u32; mesh.face_count().div_ceil(32)];
+        let mut features = vec![0u32; adjacency.edges().len().div_ceil(32)];
+        let stored = usize::from(pbuffer::render::storage_rows(
+            band as u16,
+            spec.height as u16,
+        ));
+        let mut depth = vec![0u32; w * stored];
+        let mut ids = vec![0u16; w * stored];
+        let mut lines = vec![0u32; 2 * row_words * band];
+        let mut ws = Workspace {
+            vertices: &mut vertices,
+            drawn: &mut drawn,
+            features: &mut features,
+            depth: &mut depth,
+            ids: &mut ids,
+            lines: &mut lines,
+        };
+        let mut renderer = Box::new(ZBufferRenderer::<U4, 512, 512>::new());
+        let mut fb = Box::new(Packed400x240::new());
+        let palette = MonoPalette::default();
+        let mut result = Ok(());
+        measured_region(&mut || {
+            result = renderer
+                .render(
+                    &mesh,
+                    &adjacency,
+                    &camera,
+                    &settings,
+                    &mut ws,
+                    &palette,
+                    &mut *fb,
+                    &mut (),
+                )
+                .map(|_| ())
+                .map_err(|e| format!("render: {e}"));
+        });
+        result?;
+        Ok(fb.as_bytes().to_vec())
+    }
+
+    /// The f32 baseline: welding, adjacency and normals beforehand; the frame
+    /// (buffers initialized, faces, edges, packing) inside the measured region.
+    pub fn baseline_measured() -> Result<Vec<u8>, String> {
+        let (mesh, cam) = scene()?;
+        let spec = spec(240);
+        let prep = prepare_baseline(&mesh);
+        let mut frame = None;
+        measured_region(&mut || {
+            frame = Some(render_prepared(&mesh, &prep, &cam, &spec));
+        });
+        Ok(frame.ok_or("no frame")?.packed)
+    }
+
+    /// Runs child job `name` (`pb8`, `pb32`, `pb240`, `baseline`); returns the frame.
+    pub fn child(name: &str) -> Result<Vec<u8>, String> {
+        match name {
+            "baseline" => baseline_measured(),
+            _ => {
+                let band = name
+                    .strip_prefix("pb")
+                    .and_then(|b| b.parse().ok())
+                    .filter(|b| BANDS.contains(b))
+                    .ok_or_else(|| format!("bad scene3d job {name:?}"))?;
+                pbuffer_measured(band)
+            }
+        }
+    }
+}
+
+/// `bench --scene3d`: the 3-D section alone.
+fn run_scene3d(markdown: bool, jobs: usize) -> ExitCode {
+    let mut failures = Vec::new();
+    let stat = |f: &host_tests::frame::Frame, k: &str| {
+        f.stats.iter().find(|(n, _)| n == k).map_or(0, |s| s.1)
+    };
+    // Native frames and figures.
+    let mut lib_frames = Vec::new();
+    for &b in &scene3d::BANDS {
+        match scene3d::library_frame(b) {
+            Ok(f) => lib_frames.push((b, f)),
+            Err(e) => {
+                eprintln!("bench: {}: {e}", scene3d::model_path().display());
+                return ExitCode::from(2);
+            }
+        }
+    }
+    let mut natives = Vec::new();
+    for &b in &scene3d::BANDS {
+        match scene3d::pbuffer_measured(b) {
+            Ok(bytes) => natives.push((format!("pb{b}"), bytes)),
+            Err(e) => {
+                eprintln!("bench: {e}");
+                return ExitCode::from(2);
+            }
+        }
+    }
+    match scene3d::baseline_measured() {
+        Ok(bytes) => natives.push(("baseline".into(), bytes)),
+        Err(e) => {
+            eprintln!("bench: {e}");
+            return ExitCode::from(2);
+        }
+    }
+    let reference = &lib_frames[lib_frames.len() - 1].1.packed;
+    for (name, bytes) in &natives[..scene3d::BANDS.len()] {
+        if bytes != reference {
+            failures.push(format!(
+                "{name}: the measured library frame differs from render_frame's in {} px",
+                count_diff(bytes, reference, WIDTH, HEIGHT)
+            ));
+        }
+    }
+    for (b, f) in &lib_frames {
+        if &f.packed != reference {
+            failures.push(format!(
+                "band {b}: the frame differs from the full-frame band in {} px",
+                count_diff(&f.packed, reference, WIDTH, HEIGHT)
+            ));
+        }
+    }
+    let base_bytes = &natives[natives.len() - 1].1;
+
+    // Instruction counts.
+    let valgrind = tool_version("valgrind", "--version");
+    let mut ids: Vec<String> = vec![job_id(Set::Bench, Variant::Empty)];
+    ids.extend(natives.iter().map(|(n, _)| format!("scene3d/{n}")));
+    let measured = match &valgrind {
+        Some(_) => match measure_all(&ids, jobs) {
+            Ok(m) => Some(m),
+            Err(e) => {
+                eprintln!("bench: {e}");
+                return ExitCode::from(2);
+            }
+        },
+        None => None,
+    };
+    if let Some(m) = &measured {
+        for (i, (name, bytes)) in natives.iter().enumerate() {
+            let px = count_set(bytes, WIDTH, HEIGHT);
+            if m[i + 1].pixels != px {
+                failures.push(format!(
+                    "scene3d/{name}: under valgrind {} pixels set, natively {px}",
+                    m[i + 1].pixels
+                ));
+            }
+        }
+    }
+
+    let full = &lib_frames[lib_frames.len() - 1].1;
+    let rustc = tool_version("rustc", "--version").unwrap_or_else(|| "rustc: unknown".into());
+    let machine = format!(
+        "{}; {}; {} ({})",
+        valgrind.as_deref().unwrap_or("valgrind: not found"),
+        rustc,
+        cpu_model(),
+        std::env::consts::ARCH,
+    );
+    let command = "cargo run --release -p host_tests --bin bench -- --scene3d";
+    let mut out = String::new();
+    if markdown {
+        let _ = writeln!(
+            out,
+            "Generated by `{command} --markdown`.\n\nMachine: {machine}.\n"
+        );
+    } else {
+        let _ = writeln!(out, "pbuffer bench ({command})\nmachine: {machine}\n");
+    }
+    let title = format!(
+        "Suzanne ({} faces, {} feature edges in this view), fitted camera, 400 x 240 1-bpp, dashed hidden lines, S = 4, 32-bit depth",
+        stat(full, "faces"),
+        stat(full, "feature_edges")
+    );
+    let mut rows = Vec::new();
+    let base_ir = measured.as_ref().map(|m| m[natives.len()].ir);
+    for (i, (name, bytes)) in natives.iter().enumerate() {
+        let (label, depth_bytes, ram) = if name == "baseline" {
+            (
+                "f32 P-buffer baseline (paper, full frame)".to_string(),
+                (WIDTH * HEIGHT * 4) as u64,
+                // depth f32 + ids u32 + picture u8 + lines u8 per pixel
+                (WIDTH * HEIGHT * 10) as u64,
+            )
+        } else {
+            let b: usize = name[2..].parse().unwrap_or(0);
+            let f = &lib_frames.iter().find(|(x, _)| *x == b).expect("band").1;
+            (
+                format!("pbuffer ZBufferRenderer, band {b} rows"),
+                stat(f, "depth_buffer_bytes"),
+                stat(f, "working_ram_bytes"),
+            )
+        };
+        let ir = measured.as_ref().map(|m| m[i + 1].ir);
+        rows.push(vec![
+            label,
+            ir.map_or("-".into(), thousands),
+            thousands(depth_bytes),
+            thousands(ram),
+            thousands(count_set(bytes, WIDTH, HEIGHT) as u64),
+            match (ir, base_ir) {
+                (Some(a), Some(b)) => ratio(a, b),
+                _ => "-".into(),
+            },
+        ]);
+    }
+    let table = Table {
+        title,
+        header: vec![
+            "renderer",
+            "instructions (Ir) / frame",
+            "depth buffer bytes",
+            "working RAM bytes",
+            "pixels set",
+            "ratio vs baseline",
+        ],
+        rows,
+    };
+    out += &if markdown {
+        table.markdown()
+    } else {
+        table.text()
+    };
+    out.push('\n');
+    let checks = vec![
+        format!(
+            "library frame identical at band heights 8, 32 and 240, and identical to render_frame's: {}",
+            if failures.is_empty() { "yes" } else { "NO" }
+        ),
+        format!(
+            "pbuffer vs f32 baseline: {} of {} pixels differ (the baseline is f32, unsnapped, fan-union coverage)",
+            count_diff(reference, base_bytes, WIDTH, HEIGHT),
+            WIDTH * HEIGHT
+        ),
+        format!(
+            "library spans per frame: {}; bands: {} / {} / {}",
+            stat(full, "spans"),
+            stat(&lib_frames[0].1, "bands"),
+            stat(&lib_frames[1].1, "bands"),
+            stat(full, "bands")
+        ),
+        match &measured {
+            Some(m) => format!("measurement overhead (empty region): {} Ir", m[0].ir),
+            None => "valgrind not found: instruction counts skipped".into(),
+        },
+    ];
+    if markdown {
+        out += "### Checks\n\n";
+        for c in &checks {
+            let _ = writeln!(out, "- {c}");
+        }
+        for f in &failures {
+            let _ = writeln!(out, "- FAILURE: {f}");
+        }
+    } else {
+        out += "checks:\n";
+        for c in &checks {
+            let _ = writeln!(out, "  {c}");
+        }
+        for f in &failures {
+            let _ = writeln!(out, "  FAILURE: {f}");
+        }
+    }
+    print!("{out}");
+    if !failures.is_empty() {
+        ExitCode::from(1)
+    } else if measured.is_none() {
+        ExitCode::from(2)
+    } else {
+        ExitCode::SUCCESS
+    }
+}
+
 // ---------------------------------------------------------------- main
 
 fn main() -> ExitCode {
@@ -551,11 +934,13 @@ fn main() -> ExitCode {
         }
     }
     let mut markdown = false;
+    let mut scene3d = false;
     let mut jobs = std::thread::available_parallelism().map_or(1, |n| n.get());
     let mut it = args.iter();
     while let Some(a) = it.next() {
         match a.as_str() {
             "--markdown" => markdown = true,
+            "--scene3d" => scene3d = true,
             "--jobs" => match it.next().and_then(|j| j.parse().ok()) {
                 Some(j) => jobs = j,
                 None => {
@@ -564,12 +949,12 @@ fn main() -> ExitCode {
                 }
             },
             "-h" | "--help" => {
-                println!("usage: bench [--markdown] [--jobs N]");
+                println!("usage: bench [--markdown] [--scene3d] [--jobs N]");
                 return ExitCode::SUCCESS;
             }
             other => {
                 eprintln!(
-                    "bench: unknown argument {other:?}\nusage: bench [--markdown] [--jobs N]"
+                    "bench: unknown argument {other:?}\nusage: bench [--markdown] [--scene3d] [--jobs N]"
                 );
                 return ExitCode::from(2);
             }
@@ -577,6 +962,9 @@ fn main() -> ExitCode {
     }
     if cfg!(debug_assertions) {
         eprintln!("bench: warning: debug build; run with --release for meaningful counts");
+    }
+    if scene3d {
+        return run_scene3d(markdown, jobs);
     }
 
     // ---- native checks

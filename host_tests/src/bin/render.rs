@@ -1,374 +1,270 @@
-//! `render`: draws the polygon test scene (`host_tests::scenes::test_scene`) into a packed
-//! 400 x 240 1-bpp framebuffer twice, once through the span path (`ScanConverter`) and
-//! once through the XOR path (`XorFiller`), checks that both frames are byte-identical,
-//! writes the picture as a PNG and prints the figures of the frame.
+//! `render`: draws a Wavefront OBJ model as a line drawing with dashed hidden lines (or
+//! the other modes) through the library's 3-D pipeline
+//! (`host_tests::pipeline::render_frame`), and writes the picture and the
+//! machine-readable outputs of ../shared/CONVENTIONS.md.
 //!
 //! ```text
-//! cargo run --release -p host_tests --bin render -- [--out FILE.png] [--hash]
-//!     [--scale N] [--frames N]
+//! cargo run --release -p host_tests --bin render -- [SCENE.obj] [flags]   (--help lists them)
 //! ```
 //!
-//! Exit status: 0 when both paths succeed and agree, 1 when they disagree or a fill
-//! fails, 2 on a usage or I/O error.
+//! Without SCENE it renders `../shared/models/suzanne.obj` (relative to the workspace
+//! root), or a built-in cube when that file is missing, to `docs/render.png`, and prints
+//! the figures of the frame.
+//!
+//! Exit status: 0 on success; 2 on bad input (unreadable file, malformed OBJ, bad flag
+//! or value, a camera or mesh the library rejects), with one line on stderr that names
+//! the file and line or the flag; 1 when the library returns a malformed frame. A panic
+//! is caught by a hook that prints one line and exits with 2.
 
-use std::path::PathBuf;
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
-use embedded_graphics::pixelcolor::BinaryColor;
-use fixed::types::extra::U4;
-use host_tests::image::{
-    count_diff, count_set, fnv1a64, packed_pixel, write_packed_png, write_rgb_png,
-};
-use host_tests::scenes::{test_scene, to_screen, ScenePolygon, HEIGHT, WIDTH};
-use pbuffer::{
-    packed_len, FillRule, PackedFramebuffer, ScanConverter, ScreenPoint, Span, SpanSink, Viewport,
-    XorFiller,
-};
+use host_tests::cli::{parse_args, Look, Options, USAGE};
+use host_tests::frame::{Frame, MeshData};
+use host_tests::image::{fnv1a64, packed_pixel, packed_stride, write_rgb_png};
+use host_tests::obj::load_obj;
+use host_tests::pipeline::render_frame;
 
-/// Sub-pixel bits of the vertices.
-type Frac = U4;
-const SUBPIXEL_BITS: u32 = 4;
-type Frame = PackedFramebuffer<400, 240, { packed_len(400, 240) }>;
-/// Edge capacity: the largest polygon of the scene has 16 vertices.
-type Spans = ScanConverter<64>;
-/// 13 words of 32 bits cover a 400-pixel row.
-type Xor = XorFiller<64, 13>;
+/// An error to report: the line to print and the exit status.
+struct Fail(String, u8);
 
-const USAGE: &str = "\
-usage: render [--out FILE.png] [--hash] [--scale N] [--frames N]
-  --out FILE.png  where to write the picture (default: docs/scene.png in the workspace)
-  --hash          print only the FNV-1a 64 hash of the frame (hex); the PNG is written
-                  only when --out is given too
-  --scale N       PNG pixels per frame pixel (default 2)
-  --frames N      frames per path for the timing (default 200; 0 skips the timing)";
-
-struct Args {
-    out: Option<PathBuf>,
-    hash_only: bool,
-    scale: usize,
-    frames: u32,
+fn bad(msg: impl Into<String>) -> Fail {
+    Fail(msg.into(), 2)
 }
 
-fn parse_args() -> Result<Args, String> {
-    let mut a = Args {
-        out: None,
-        hash_only: false,
-        scale: 2,
-        frames: 200,
+fn workspace_root() -> PathBuf {
+    let manifest = Path::new(env!("CARGO_MANIFEST_DIR"));
+    manifest.parent().unwrap_or(manifest).to_path_buf()
+}
+
+/// A 2 x 2 x 2 cube centred on the origin, faces counter-clockwise from outside.
+fn builtin_cube() -> MeshData {
+    let vertices = (0..8)
+        .map(|i| {
+            [
+                f64::from(i & 1) * 2.0 - 1.0,
+                f64::from((i >> 1) & 1) * 2.0 - 1.0,
+                f64::from((i >> 2) & 1) * 2.0 - 1.0,
+            ]
+        })
+        .collect();
+    let faces = vec![
+        vec![0, 2, 3, 1],
+        vec![4, 5, 7, 6],
+        vec![0, 1, 5, 4],
+        vec![2, 6, 7, 3],
+        vec![0, 4, 6, 2],
+        vec![1, 3, 7, 5],
+    ];
+    MeshData { vertices, faces }
+}
+
+fn write_file(flag: &str, path: &Path, bytes: &[u8]) -> Result<(), Fail> {
+    let io = || -> std::io::Result<()> {
+        if let Some(dir) = path.parent() {
+            if !dir.as_os_str().is_empty() {
+                std::fs::create_dir_all(dir)?;
+            }
+        }
+        let mut f = std::fs::File::create(path)?;
+        f.write_all(bytes)?;
+        f.flush()
     };
-    let mut it = std::env::args().skip(1);
-    while let Some(arg) = it.next() {
-        let mut value = |name: &str| it.next().ok_or(format!("{name} needs a value"));
-        match arg.as_str() {
-            "--out" => a.out = Some(PathBuf::from(value("--out")?)),
-            "--hash" => a.hash_only = true,
-            "--scale" => {
-                a.scale = value("--scale")?
-                    .parse()
-                    .ok()
-                    .filter(|&s| (1..=16).contains(&s))
-                    .ok_or("--scale needs an integer in 1..=16")?
-            }
-            "--frames" => {
-                a.frames = value("--frames")?
-                    .parse()
-                    .map_err(|_| "--frames needs a non-negative integer")?
-            }
-            "-h" | "--help" => {
-                println!("{USAGE}");
-                std::process::exit(0);
-            }
-            other => return Err(format!("unknown argument {other:?}")),
-        }
-    }
-    Ok(a)
+    io().map_err(|e| bad(format!("{flag}: cannot write {}: {e}", path.display())))
 }
 
-/// A span sink that counts what goes through it.
-struct Counting<'a, K> {
-    inner: &'a mut K,
-    spans: u64,
-    span_pixels: u64,
-}
-
-impl<'a, K: SpanSink> Counting<'a, K> {
-    fn new(inner: &'a mut K) -> Self {
-        Self {
-            inner,
-            spans: 0,
-            span_pixels: 0,
-        }
-    }
-}
-
-impl<K: SpanSink> SpanSink for Counting<'_, K> {
-    type Color = K::Color;
-    type Error = K::Error;
-    fn viewport(&self) -> Viewport {
-        self.inner.viewport()
-    }
-    fn fill_span(&mut self, span: Span, color: Self::Color) -> Result<(), Self::Error> {
-        self.spans += 1;
-        self.span_pixels += u64::from(span.x1().saturating_sub(span.x0()));
-        self.inner.fill_span(span, color)
-    }
-    fn flush(&mut self) -> Result<(), Self::Error> {
-        self.inner.flush()
-    }
-}
-
-#[derive(Clone, Copy, PartialEq)]
-enum Path {
-    /// ScanConverter for every polygon.
-    Span,
-    /// XorFiller for even-odd polygons; ScanConverter for non-zero ones (XorFiller
-    /// computes parity only).
-    Xor,
-}
-
-struct Prepared {
-    points: Vec<ScreenPoint<Frac>>,
-    rule: FillRule,
-    color: BinaryColor,
-}
-
-fn color(on: bool) -> BinaryColor {
-    if on {
-        BinaryColor::On
-    } else {
-        BinaryColor::Off
-    }
-}
-
-/// Draws the whole scene into `sink` along `path`. Err names the failing polygon.
-fn draw<K: SpanSink<Color = BinaryColor>>(
-    path: Path,
-    scene: &[Prepared],
-    sc: &mut Spans,
-    xf: &mut Xor,
-    sink: &mut K,
-) -> Result<(), String>
-where
-    K::Error: core::fmt::Debug,
-{
-    for (i, p) in scene.iter().enumerate() {
-        let r = if path == Path::Xor && p.rule == FillRule::EvenOdd {
-            xf.fill(&p.points, p.color, sink)
-        } else {
-            sc.fill(&p.points, p.rule, p.color, sink)
-        };
-        r.map_err(|e| {
-            let who = if path == Path::Xor && p.rule == FillRule::EvenOdd {
-                "XorFiller"
-            } else {
-                "ScanConverter"
-            };
-            format!("{who} failed on polygon #{i}: {e:?}")
+/// `--ids`: P5, maxval 65535, big-endian 16-bit samples.
+fn ids_pgm(frame: &Frame) -> Result<Vec<u8>, Fail> {
+    let mut out = format!("P5\n{} {}\n65535\n", frame.width, frame.height).into_bytes();
+    out.reserve(frame.ids.len() * 2);
+    for &id in &frame.ids {
+        let v = u16::try_from(id).map_err(|_| {
+            Fail(
+                format!("internal error: face id sample {id} does not fit 16 bits"),
+                1,
+            )
         })?;
+        out.extend_from_slice(&v.to_be_bytes());
     }
+    Ok(out)
+}
+
+/// `--lines`: P5, maxval 255, one byte per pixel (0, 1 or 2).
+fn lines_pgm(frame: &Frame) -> Vec<u8> {
+    let mut out = format!("P5\n{} {}\n255\n", frame.width, frame.height).into_bytes();
+    out.extend_from_slice(&frame.lines);
+    out
+}
+
+/// Off and on colours of a look.
+fn colours(look: Look) -> ([u8; 3], [u8; 3]) {
+    match look {
+        // A reflective memory LCD: grey-green glass, near-black pixels.
+        Look::LcdWhite => ([214, 219, 205], [38, 42, 48]),
+        Look::LcdGreen => ([120, 185, 50], [32, 32, 32]),
+        Look::LcdBlue => ([70, 80, 230], [230, 230, 255]),
+        Look::OledWhite => ([20, 20, 20], [255, 255, 255]),
+        Look::OledBlue => ([0, 20, 40], [0, 210, 255]),
+        Look::Paper => ([255, 255, 255], [0, 0, 0]),
+    }
+}
+
+fn mix(a: [u8; 3], b: [u8; 3], t: f32) -> [u8; 3] {
+    std::array::from_fn(|k| (f32::from(a[k]) * (1.0 - t) + f32::from(b[k]) * t).round() as u8)
+}
+
+/// The picture as the display would show it: each frame pixel a `scale x scale` block;
+/// from scale 3 up (not for `paper`) the last row and column of each block are a shade
+/// towards the glass colour, a faint pixel grid that keeps lines continuous.
+fn write_png(o: &Options, path: &Path, frame: &Frame) -> Result<(), Fail> {
+    let (w, h, s) = (frame.width, frame.height, o.scale);
+    let (off, on) = colours(o.look);
+    let grid = s >= 3 && o.look != Look::Paper;
+    let (on_edge, off_edge) = (mix(on, off, 0.3), mix(off, [0, 0, 0], 0.06));
+    let mut rgb = Vec::with_capacity(w * s * h * s * 3);
+    for y in 0..h {
+        for sy in 0..s {
+            for x in 0..w {
+                let lit = packed_pixel(&frame.packed, w, x, y);
+                for sx in 0..s {
+                    let edge = grid && (sx == s - 1 || sy == s - 1);
+                    rgb.extend_from_slice(&match (lit, edge) {
+                        (true, false) => on,
+                        (true, true) => on_edge,
+                        (false, false) => off,
+                        (false, true) => off_edge,
+                    });
+                }
+            }
+        }
+    }
+    write_rgb_png(path, &rgb, w * s, h * s, 1)
+        .map_err(|e| bad(format!("--out: cannot write {}: {e}", path.display())))
+}
+
+fn run() -> Result<(), Fail> {
+    let args: Vec<String> = std::env::args_os()
+        .skip(1)
+        .map(|a| a.to_string_lossy().into_owned())
+        .collect();
+    let o = parse_args(&args).map_err(bad)?;
+    if o.help {
+        println!("{USAGE}");
+        return Ok(());
+    }
+
+    // The scene.
+    let default_model = workspace_root().join("../shared/models/suzanne.obj");
+    let (mesh, scene_name) = match &o.scene {
+        Some(p) => (load_obj(p).map_err(bad)?, p.display().to_string()),
+        None if default_model.exists() => (
+            load_obj(&default_model).map_err(bad)?,
+            default_model.display().to_string(),
+        ),
+        None => (builtin_cube(), "built-in cube".to_string()),
+    };
+    if o.ids.is_some() && mesh.faces.len() > 65_535 {
+        return Err(bad(format!(
+            "--ids: {scene_name} has {} faces; a 16-bit id image holds at most 65535",
+            mesh.faces.len()
+        )));
+    }
+    let camera = o.camera(&mesh).map_err(bad)?;
+
+    // The frame.
+    let t = Instant::now();
+    let frame =
+        render_frame(&mesh, &camera, &o.spec).map_err(|e| bad(format!("{scene_name}: {e}")))?;
+    let time_us = t.elapsed().as_micros();
+    let (w, h) = (o.spec.width, o.spec.height);
+    if frame.width != w
+        || frame.height != h
+        || frame.ids.len() != w * h
+        || frame.lines.len() != w * h
+        || frame.packed.len() != packed_stride(w) * h
+    {
+        return Err(Fail(
+            format!(
+                "internal error: the library returned a malformed {}x{} frame (ids {}, lines {}, packed {} bytes) for {w}x{h}",
+                frame.width,
+                frame.height,
+                frame.ids.len(),
+                frame.lines.len(),
+                frame.packed.len()
+            ),
+            1,
+        ));
+    }
+
+    // Outputs.
+    let out = match (&o.out, &o.scene) {
+        (Some(p), _) => Some(p.clone()),
+        (None, None) => Some(workspace_root().join("docs").join("render.png")),
+        (None, Some(_)) => None,
+    };
+    if let Some(p) = &out {
+        write_png(&o, p, &frame)?;
+    }
+    if let Some(p) = &o.ids {
+        write_file("--ids", p, &ids_pgm(&frame)?)?;
+    }
+    if let Some(p) = &o.lines {
+        write_file("--lines", p, &lines_pgm(&frame))?;
+    }
+    let mut text = String::new();
+    if o.hash {
+        text += &format!("hash: {:016x}\n", fnv1a64(&frame.packed));
+    }
+    let asked_other = o.hash || o.out.is_some() || o.ids.is_some() || o.lines.is_some();
+    if o.stats || !asked_other {
+        text += &format!("scene: {scene_name}\n");
+        text += &format!("size: {w}x{h}\n");
+        if !frame.stats.iter().any(|(k, _)| k == "faces") {
+            text += &format!("faces: {}\n", mesh.faces.len());
+        }
+        for (k, v) in &frame.stats {
+            text += &format!("{k}: {v}\n");
+        }
+        // The library's own `time_us` (the render call proper) when it reports one;
+        // `call_time_us` is the whole `render_frame` call (mesh set-up included).
+        if !frame.stats.iter().any(|(k, _)| k == "time_us") {
+            text += &format!("time_us: {time_us}\n");
+        }
+        text += &format!("call_time_us: {time_us}\n");
+        if let Some(p) = &out {
+            text += &format!("wrote: {}\n", p.display());
+        }
+    }
+    let mut stdout = std::io::stdout().lock();
+    // A closed pipe (`render --stats | head -1`) is not an error worth a message.
+    let _ = stdout.write_all(text.as_bytes());
+    let _ = stdout.flush();
     Ok(())
 }
 
-struct Figures {
-    spans: u64,
-    span_pixels: u64,
-    frame: Box<Frame>,
-    us_per_frame: Option<f64>,
-}
-
-fn run(path: Path, scene: &[Prepared], frames: u32) -> Result<Figures, String> {
-    let mut sc = Spans::new();
-    let mut xf = Xor::new();
-    let mut frame = Box::new(Frame::new());
-    let mut counting = Counting::new(&mut *frame);
-    draw(path, scene, &mut sc, &mut xf, &mut counting)?;
-    let (spans, span_pixels) = (counting.spans, counting.span_pixels);
-
-    let us_per_frame = if frames == 0 {
-        None
-    } else {
-        // Best of 5 batches, after a warm-up batch.
-        let batch = frames.div_ceil(5);
-        let mut fb = Box::new(Frame::new());
-        let mut best = f64::INFINITY;
-        for round in 0..6 {
-            let t = Instant::now();
-            for _ in 0..batch {
-                fb.clear();
-                draw(path, scene, &mut sc, &mut xf, &mut *fb)?;
-                std::hint::black_box(&mut *fb);
-            }
-            let us = t.elapsed().as_secs_f64() * 1e6 / f64::from(batch);
-            if round > 0 {
-                best = best.min(us);
-            }
-        }
-        Some(best)
-    };
-    Ok(Figures {
-        spans,
-        span_pixels,
-        frame,
-        us_per_frame,
-    })
-}
-
-fn default_out() -> PathBuf {
-    let manifest = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-    manifest
-        .parent()
-        .unwrap_or(manifest)
-        .join("docs")
-        .join("scene.png")
-}
-
-fn kinds(scene: &[ScenePolygon]) -> String {
-    let mut v: Vec<(&str, usize)> = Vec::new();
-    for p in scene {
-        match v.iter_mut().find(|(k, _)| *k == p.kind) {
-            Some((_, n)) => *n += 1,
-            None => v.push((p.kind, 1)),
-        }
-    }
-    v.iter()
-        .map(|(k, n)| format!("{n} {k}"))
-        .collect::<Vec<_>>()
-        .join(", ")
-}
-
 fn main() -> ExitCode {
-    let args = match parse_args() {
-        Ok(a) => a,
-        Err(e) => {
-            eprintln!("render: {e}\n{USAGE}");
-            return ExitCode::from(2);
-        }
-    };
-    let scene = test_scene();
-    let prepared: Vec<Prepared> = scene
-        .iter()
-        .map(|p| Prepared {
-            points: to_screen::<Frac>(&p.points),
-            rule: p.rule,
-            color: color(p.on),
-        })
-        .collect();
-    let frames = if args.hash_only { 0 } else { args.frames };
-
-    let results = run(Path::Span, &prepared, frames)
-        .and_then(|a| run(Path::Xor, &prepared, frames).map(|b| (a, b)));
-    let (a, b) = match results {
-        Ok(r) => r,
-        Err(e) => {
-            eprintln!("render: {e}");
-            return ExitCode::from(1);
-        }
-    };
-
-    let (w, h) = (WIDTH, HEIGHT);
-    let bytes = a.frame.as_bytes();
-    let same = bytes == b.frame.as_bytes();
-    let hash = fnv1a64(bytes);
-    let out = args.out.clone().unwrap_or_else(default_out);
-
-    if !same {
-        let n = count_diff(bytes, b.frame.as_bytes(), w, h);
-        eprintln!("render: MISMATCH: the span path and the XOR path differ in {n} pixels");
-        let mut rgb = Vec::with_capacity(w * h * 3);
-        let mut shown = 0;
-        for y in 0..h {
-            for x in 0..w {
-                let (p, q) = (
-                    packed_pixel(bytes, w, x, y),
-                    packed_pixel(b.frame.as_bytes(), w, x, y),
-                );
-                if p != q && shown < 20 {
-                    eprintln!("  pixel ({x}, {y}): span path {p}, XOR path {q}");
-                    shown += 1;
-                }
-                rgb.extend_from_slice(match (p, q) {
-                    (true, true) => &[0, 0, 0],
-                    (false, false) => &[255, 255, 255],
-                    (true, false) => &[230, 0, 0],
-                    (false, true) => &[0, 0, 230],
-                });
-            }
-        }
-        let diff = out.with_file_name(format!(
-            "{}-mismatch.png",
-            out.file_stem().and_then(|s| s.to_str()).unwrap_or("scene")
-        ));
-        match write_rgb_png(&diff, &rgb, w, h, args.scale) {
-            Ok(()) => eprintln!(
-                "  wrote {} (black: both, red: span path only, blue: XOR path only)",
-                diff.display()
-            ),
-            Err(e) => eprintln!("  cannot write {}: {e}", diff.display()),
-        }
-        return ExitCode::from(1);
-    }
-
-    if !args.hash_only || args.out.is_some() {
-        if let Err(e) = write_packed_png(&out, bytes, w, h, args.scale) {
-            eprintln!("render: cannot write {}: {e}", out.display());
-            return ExitCode::from(2);
+    std::panic::set_hook(Box::new(|info| {
+        let msg = info
+            .payload()
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| info.payload().downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "unknown".into());
+        let first = msg.lines().next().unwrap_or("");
+        let at = info
+            .location()
+            .map(|l| format!(" at {}:{}", l.file(), l.line()))
+            .unwrap_or_default();
+        eprintln!("render: internal error: {first}{at}");
+        std::process::exit(2);
+    }));
+    match run() {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(Fail(msg, code)) => {
+            eprintln!("render: {msg}");
+            ExitCode::from(code)
         }
     }
-    if args.hash_only {
-        println!("{hash:016x}");
-        return ExitCode::SUCCESS;
-    }
-
-    let nonzero = scene.iter().filter(|p| p.rule == FillRule::NonZero).count();
-    let set = count_set(bytes, w, h);
-    let time = |f: &Figures| {
-        f.us_per_frame
-            .map_or_else(|| "-".to_string(), |us| format!("{us:.1} us"))
-    };
-    println!("pbuffer render: polygon test scene, {w} x {h}, 1 bpp packed, S = {SUBPIXEL_BITS} sub-pixel bits");
-    println!("  polygons      {} ({})", scene.len(), kinds(&scene));
-    println!();
-    println!("  {:<16}{:>22}{:>22}", "", "span path", "XOR path");
-    println!(
-        "  {:<16}{:>22}{:>22}",
-        "filler", "ScanConverter<64>", "XorFiller<64, 13>"
-    );
-    println!("  {:<16}{:>22}{:>22}", "spans", a.spans, b.spans);
-    println!(
-        "  {:<16}{:>22}{:>22}",
-        "span pixels", a.span_pixels, b.span_pixels
-    );
-    println!(
-        "  {:<16}{:>22}{:>22}",
-        "pixels set",
-        set,
-        count_set(b.frame.as_bytes(), w, h)
-    );
-    println!(
-        "  {:<16}{:>22}{:>22}",
-        "FNV-1a 64",
-        format!("{hash:016x}"),
-        format!("{:016x}", fnv1a64(b.frame.as_bytes()))
-    );
-    println!("  {:<16}{:>22}{:>22}", "time / frame", time(&a), time(&b));
-    println!();
-    if nonzero > 0 {
-        println!(
-            "  XOR path: {nonzero} non-zero polygon(s) drawn by ScanConverter (XorFiller is even-odd only)"
-        );
-    }
-    println!(
-        "  frames identical: yes ({} bytes); wall time is the best of 5 batches of {} frames, clear included",
-        bytes.len(),
-        args.frames.div_ceil(5)
-    );
-    println!(
-        "  wrote {} ({} x {}, scale {})",
-        out.display(),
-        w * args.scale,
-        h * args.scale,
-        args.scale
-    );
-    ExitCode::SUCCESS
 }

@@ -1,0 +1,289 @@
+//! The `render` command as a user meets it: the built binary run on temporary files.
+//! Every bad input exits with status 2 and one line on stderr naming the file and line
+//! or the flag; the PGM and PNG outputs have the right headers and sizes; `--hash` and
+//! `--stats` print `name: value` lines.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+const TETRA: &str = "\
+# a closed tetrahedron, counter-clockwise from outside
+v 0 0 0
+v 1 0 0
+v 0 1 0
+v 0 0 1
+f 1 3 2
+f 1 2 4
+f 1 4 3
+f 2 3 4
+";
+
+struct Dir(PathBuf);
+
+impl Dir {
+    fn new(name: &str) -> Self {
+        let d =
+            std::env::temp_dir().join(format!("pbuffer-render-cli-{}-{name}", std::process::id()));
+        std::fs::create_dir_all(&d).unwrap();
+        Dir(d)
+    }
+    fn file(&self, name: &str, text: &str) -> PathBuf {
+        let p = self.0.join(name);
+        std::fs::write(&p, text).unwrap();
+        p
+    }
+    fn path(&self, name: &str) -> PathBuf {
+        self.0.join(name)
+    }
+}
+
+impl Drop for Dir {
+    fn drop(&mut self) {
+        std::fs::remove_dir_all(&self.0).ok();
+    }
+}
+
+fn render(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_render"))
+        .args(args)
+        .env("RUST_BACKTRACE", "1")
+        .output()
+        .expect("run render")
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+/// Asserts exit status 2 and exactly one stderr line that contains `needle`.
+fn fails_with(out: &Output, needle: &str) -> String {
+    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    assert_eq!(out.status.code(), Some(2), "stderr: {err}");
+    assert_eq!(err.lines().count(), 1, "one line: {err:?}");
+    assert!(err.contains(needle), "{needle:?} not in {err:?}");
+    assert!(
+        !err.contains("panicked") && !err.contains("backtrace"),
+        "{err}"
+    );
+    assert!(out.stdout.is_empty(), "nothing on stdout");
+    err
+}
+
+#[test]
+fn obj_errors_name_file_and_line() {
+    let d = Dir::new("obj");
+    let cases: [(&str, String, &str); 9] = [
+        ("nan.obj", format!("{TETRA}v nan 0 0\n"), ":10: "),
+        ("inf.obj", "v 0 0 inf\n".to_string(), ":1: "),
+        ("garbage-v.obj", "v 0 0\n".to_string(), ":1: "),
+        ("garbage-f.obj", format!("{TETRA}f 1 2 three\n"), ":10: "),
+        ("zero.obj", format!("{TETRA}f 0 1 2\n"), ":10: "),
+        ("range.obj", format!("{TETRA}f 1 2 5\n"), ":10: "),
+        ("negative.obj", format!("{TETRA}f -1 -2 -5\n"), ":10: "),
+        ("two.obj", format!("{TETRA}f 1 2\n"), ":10: "),
+        (
+            "nofaces.obj",
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\n".to_string(),
+            ":-: ",
+        ),
+    ];
+    for (name, text, line) in cases {
+        let p = d.file(name, &text);
+        let out = render(&[s(&p), "--hash"]);
+        let err = fails_with(&out, &format!("{}{line}", s(&p)));
+        assert!(err.starts_with("render: "), "{err}");
+    }
+}
+
+#[test]
+fn unreadable_file() {
+    let d = Dir::new("unreadable");
+    let missing = d.path("missing.obj");
+    fails_with(
+        &render(&[s(&missing)]),
+        &format!("{}:-: cannot read", s(&missing)),
+    );
+    // A directory is not a readable OBJ file either.
+    fails_with(&render(&[s(&d.0)]), ":-: cannot read");
+}
+
+#[test]
+fn flag_errors_name_the_flag() {
+    let d = Dir::new("flags");
+    let p = d.file("t.obj", TETRA);
+    for (args, flag) in [
+        (&["--size", "0x10"][..], "--size"),
+        (&["--size", "abc"], "--size"),
+        (&["--eye", "1,2"], "--eye"),
+        (&["--eye", "nan,0,0"], "--eye"),
+        (&["--fov", "0"], "--fov"),
+        (&["--ortho", "0"], "--ortho"),
+        (&["--near", "-1"], "--near"),
+        (&["--eye", "0,0,5", "--near", "2", "--far", "1"], "--far"),
+        (&["--eye", "0,0,5", "--target", "0,0,5"], "--eye"),
+        (&["--eye", "0,5,0"], "--up"),
+        (&["--crease", "-5"], "--crease"),
+        (&["--cull", "sometimes"], "--cull"),
+        (&["--mode", "solid"], "--mode"),
+        (&["--engine", "codefill"], "--engine"),
+        (&["--subpixel", "13"], "--subpixel"),
+        (&["--depth-bits", "8"], "--depth-bits"),
+        (&["--band", "0"], "--band"),
+        (&["--band", "241"], "--band"),
+        (&["--pattern", "zigzag"], "--pattern"),
+        (&["--scale", "99"], "--scale"),
+        (&["--out", "x.bmp"], "--out"),
+        (&["--ids"], "--ids"),
+        (&["--nonsense"], "--nonsense"),
+        (&["--fit", "--eye", "1,1,1"], "--fit"),
+    ] {
+        let mut a = vec![s(&p)];
+        a.extend_from_slice(args);
+        fails_with(&render(&a), flag);
+    }
+    fails_with(&render(&[s(&p), s(&p)]), "second scene");
+}
+
+#[test]
+fn unwritable_output() {
+    let d = Dir::new("unwritable");
+    let p = d.file("t.obj", TETRA);
+    // A path below a regular file cannot be created.
+    let below = d.path("t.obj/x.pgm");
+    fails_with(&render(&[s(&p), "--lines", s(&below)]), "--lines");
+}
+
+#[test]
+fn too_many_faces_for_ids() {
+    let d = Dir::new("ids-limit");
+    let mut text = String::from("v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+    for _ in 0..65_536 {
+        text += "f 1 2 3\n";
+    }
+    let p = d.file("big.obj", &text);
+    let ids = d.path("ids.pgm");
+    fails_with(&render(&[s(&p), "--ids", s(&ids)]), "65536 faces");
+    assert!(!ids.exists());
+}
+
+fn pgm(bytes: &[u8]) -> (String, &[u8]) {
+    // Header: three whitespace-terminated fields after "P5", then one whitespace byte.
+    let mut fields = 0;
+    let mut i = 2;
+    assert_eq!(&bytes[..2], b"P5");
+    while fields < 3 {
+        while bytes[i].is_ascii_whitespace() {
+            i += 1;
+        }
+        while !bytes[i].is_ascii_whitespace() {
+            i += 1;
+        }
+        fields += 1;
+    }
+    let header = String::from_utf8(bytes[..i].to_vec()).unwrap();
+    (header, &bytes[i + 1..])
+}
+
+#[test]
+fn pgm_outputs_and_hash() {
+    let d = Dir::new("pgm");
+    let p = d.file("t.obj", TETRA);
+    let (ids, lines, png) = (d.path("ids.pgm"), d.path("lines.pgm"), d.path("out/t.png"));
+    let out = render(&[
+        s(&p),
+        "--size",
+        "64x48",
+        "--ids",
+        s(&ids),
+        "--lines",
+        s(&lines),
+        "--out",
+        s(&png),
+        "--scale",
+        "2",
+        "--hash",
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    // --hash alone prints one line `hash: ` + 16 lower-case hex digits.
+    assert_eq!(stdout.lines().count(), 1, "{stdout}");
+    let hex = stdout
+        .trim_end()
+        .strip_prefix("hash: ")
+        .expect("hash: prefix");
+    assert_eq!(hex.len(), 16);
+    assert!(hex
+        .chars()
+        .all(|c| c.is_ascii_hexdigit() && !c.is_ascii_uppercase()));
+
+    let bytes = std::fs::read(&ids).unwrap();
+    let (header, data) = pgm(&bytes);
+    assert_eq!(header, "P5\n64 48\n65535");
+    assert_eq!(data.len(), 64 * 48 * 2);
+    let samples: Vec<u16> = data
+        .chunks_exact(2)
+        .map(|c| u16::from_be_bytes([c[0], c[1]]))
+        .collect();
+    assert!(
+        samples.iter().all(|&v| v <= 4),
+        "ids are 0 or 1 + face index"
+    );
+    assert!(samples.iter().any(|&v| v != 0), "the tetrahedron is seen");
+
+    let bytes = std::fs::read(&lines).unwrap();
+    let (header, data) = pgm(&bytes);
+    assert_eq!(header, "P5\n64 48\n255");
+    assert_eq!(data.len(), 64 * 48);
+    assert!(data.iter().all(|&v| v <= 2));
+    assert!(data.contains(&1));
+
+    let dec = png::Decoder::new(std::fs::File::open(&png).unwrap());
+    let info = dec.read_info().unwrap();
+    let (w, h) = (info.info().width, info.info().height);
+    assert_eq!((w, h), (64 * 2, 48 * 2));
+
+    // The same frame again: the same hash.
+    let again = render(&[s(&p), "--size", "64x48", "--hash"]);
+    assert_eq!(String::from_utf8(again.stdout).unwrap(), stdout);
+}
+
+#[test]
+fn stats_lines() {
+    let d = Dir::new("stats");
+    let p = d.file("t.obj", TETRA);
+    let out = render(&[s(&p), "--stats", "--size=80x60", "--mode", "hidden"]);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    let mut names = Vec::new();
+    for l in stdout.lines() {
+        let (k, v) = l
+            .split_once(": ")
+            .unwrap_or_else(|| panic!("not name: value: {l:?}"));
+        assert!(!k.is_empty() && !v.is_empty() && !k.contains(' '), "{l:?}");
+        names.push(k.to_string());
+    }
+    for k in [
+        "faces",
+        "faces_drawn",
+        "feature_edges",
+        "spans",
+        "working_ram_bytes",
+        "time_us",
+    ] {
+        assert!(names.iter().any(|n| n == k), "{k} missing in {stdout}");
+    }
+    assert!(stdout.contains("faces: 4\n"), "{stdout}");
+}
+
+#[test]
+fn help_exits_zero() {
+    let out = render(&["--help"]);
+    assert_eq!(out.status.code(), Some(0));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("--mode"));
+}
