@@ -112,7 +112,8 @@ impl MeshArrays {
     }
 }
 
-fn camera(spec: &CameraSpec) -> Result<Camera, String> {
+/// The library camera of a `CameraSpec`.
+pub fn camera(spec: &CameraSpec) -> Result<Camera, String> {
     let f = |v: [f64; 3]| v.map(|c| c as f32);
     let projection = match spec.projection {
         ProjectionSpec::Perspective { fov_deg } => Projection::Perspective {
@@ -131,6 +132,27 @@ fn camera(spec: &CameraSpec) -> Result<Camera, String> {
         spec.far as f32,
     )
     .map_err(|e| format!("camera: {e}"))
+}
+
+/// The library settings of a `RenderSpec`.
+pub fn settings(spec: &RenderSpec) -> Result<Settings, String> {
+    let pattern = Pattern::by_name(&spec.pattern)
+        .ok_or_else(|| format!("--pattern {}: unknown", spec.pattern))?;
+    Ok(Settings {
+        mode: match spec.mode {
+            ModeSpec::Wireframe => DrawMode::Wireframe,
+            ModeSpec::Hidden => DrawMode::HiddenRemoved,
+            ModeSpec::Dashed => DrawMode::Dashed,
+            ModeSpec::Surfaces => DrawMode::Surfaces,
+            ModeSpec::SurfacesDashed => DrawMode::SurfacesDashed,
+        },
+        cull: match spec.cull {
+            CullSpec::On => Cull::On,
+            CullSpec::Off => Cull::Off,
+            CullSpec::Auto => Cull::Auto,
+        },
+        pattern,
+    })
 }
 
 /// Renders with the library exactly as firmware would (fixed point, banded).
@@ -185,23 +207,7 @@ fn render_sd<Frac: LeEqU32, D: Depth>(
     )
     .map_err(|e| format!("adjacency: {e}"))?;
     let camera = camera(cam)?;
-    let pattern = Pattern::by_name(&spec.pattern)
-        .ok_or_else(|| format!("--pattern {}: unknown", spec.pattern))?;
-    let settings = Settings {
-        mode: match spec.mode {
-            ModeSpec::Wireframe => DrawMode::Wireframe,
-            ModeSpec::Hidden => DrawMode::HiddenRemoved,
-            ModeSpec::Dashed => DrawMode::Dashed,
-            ModeSpec::Surfaces => DrawMode::Surfaces,
-            ModeSpec::SurfacesDashed => DrawMode::SurfacesDashed,
-        },
-        cull: match spec.cull {
-            CullSpec::On => Cull::On,
-            CullSpec::Off => Cull::Off,
-            CullSpec::Auto => Cull::Auto,
-        },
-        pattern,
-    };
+    let settings = settings(spec)?;
     let (w, h) = (spec.width, spec.height);
     let band = spec.band.clamp(1, h.max(1));
     let row_words = w.div_ceil(32);

@@ -568,15 +568,12 @@ mod scene3d {
     use fixed::types::extra::U4;
     use host_tests::baseline::{prepare_baseline, render_prepared};
     use host_tests::fit::fit_camera;
-    use host_tests::frame::{CameraSpec, MeshData, ProjectionSpec, RenderSpec};
+    use host_tests::frame::{CameraSpec, MeshData, RenderSpec};
     use host_tests::obj::load_obj;
     use host_tests::pipeline::{render_frame, MeshArrays};
     use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
     use pbuffer::render::ProjectedVertex;
-    use pbuffer::{
-        Camera, Cull, DrawMode, MonoPalette, Pattern, Projection, Settings, Workspace,
-        ZBufferRenderer,
-    };
+    use pbuffer::{MonoPalette, Workspace, ZBufferRenderer};
     use std::path::PathBuf;
 
     /// Band heights measured.
@@ -630,26 +627,8 @@ mod scene3d {
             &mut edge_store,
         )
         .map_err(|e| format!("adjacency: {e}"))?;
-        let f = |v: [f64; 3]| v.map(|c| c as f32);
-        let ProjectionSpec::Perspective { fov_deg } = cam.projection else {
-            return Err("the fitted camera is perspective".into());
-        };
-        let camera = Camera::new(
-            f(cam.eye),
-            f(cam.target),
-            f(cam.up),
-            Projection::Perspective {
-                fov_y_deg: fov_deg as f32,
-            },
-            cam.near as f32,
-            cam.far as f32,
-        )
-        .map_err(|e| format!("camera: {e}"))?;
-        let settings = Settings {
-            mode: DrawMode::Dashed,
-            cull: Cull::Auto,
-            pattern: Pattern::by_name(&spec.pattern).ok_or("pattern")?,
-        };
+        let camera = host_tests::pipeline::camera(&cam)?;
+        let settings = host_tests::pipeline::settings(&spec)?;
         let (w, band) = (spec.width, spec.band);
         let row_words = w.div_ceil(32);
         let mut vertices = vec![ProjectedVertex::default(); arrays.vertices.len()];
