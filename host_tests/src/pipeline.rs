@@ -226,10 +226,12 @@ fn render_sd<Frac: LeEqU32, D: Depth>(
         ids: &mut ids,
         lines: &mut lines,
     };
-    let lent = ws.bytes()
-        + std::mem::size_of_val(weld.as_slice())
-        + std::mem::size_of_val(scratch.as_slice())
-        + std::mem::size_of_val(adjacency.edges());
+    // Per frame: the lent workspace, the mesh's edge list and the renderer. The weld
+    // map and half-edge records are needed only while the edge list is built (once
+    // per mesh), so they are reported apart.
+    let lent = ws.bytes() + std::mem::size_of_val(adjacency.edges());
+    let build_bytes =
+        std::mem::size_of_val(weld.as_slice()) + std::mem::size_of_val(scratch.as_slice());
     let mut renderer = Box::new(ZBufferRenderer::<Frac, EDGES, POLY>::new());
     let mut target = PackedFrame::new(w, h);
     let mut probe = Collect {
@@ -270,6 +272,7 @@ fn render_sd<Frac: LeEqU32, D: Depth>(
                 u64::from(stats.depth_buffer_bytes),
             ),
             ("working_ram_bytes".into(), working as u64),
+            ("adjacency_build_bytes".into(), build_bytes as u64),
             ("time_us".into(), time_us),
         ],
     })
