@@ -84,7 +84,7 @@ fn random_mesh(rng: &mut Rng) -> MeshData {
 
 #[test]
 fn hostile_meshes_and_cameras_never_panic_or_overdraw() {
-    let mut rng = Rng::new(0x5EED_0F_BAD);
+    let mut rng = Rng::new(0x0005_EED0_FBAD);
     let (mut rendered, mut rejected) = (0usize, 0usize);
     let mut why = std::collections::BTreeMap::<String, usize>::new();
     for case in 0..4000 {
