@@ -1,7 +1,8 @@
 //! Firmware smoke test for pbuffer on a Cortex-M4 (QEMU `mps2-an386`, run by
-//! scripts/thumb-check): fills two polygons into a 128x64 packed framebuffer, prints the
-//! FNV-1a 64 hash of its bytes and the instruction count of each fill, and exits 0 only
-//! when the hash is the one the host computes for the same scene (see `EXPECTED`).
+//! scripts/thumb-check): fills two polygons into a 128x64 packed framebuffer, then renders
+//! a cube with dashed hidden lines (`cube.rs`, 8-row bands), prints the FNV-1a 64 hash of
+//! each frame and the instructions each step took, and exits 0 only when both hashes are
+//! the ones the host computes for the same scenes (`EXPECTED`, `cube::EXPECTED_CUBE`).
 //! A panic or an error exits non-zero (panic-semihosting's `exit` feature).
 #![no_std]
 #![no_main]
@@ -15,6 +16,8 @@ use embedded_graphics::pixelcolor::BinaryColor;
 use fixed::types::extra::U4;
 use panic_semihosting as _;
 use pbuffer::{packed_len, FillRule, PackedFramebuffer, ScanConverter, ScreenPoint};
+
+mod cube;
 
 type Fb = PackedFramebuffer<128, 64, { packed_len(128, 64) }>;
 type P = ScreenPoint<U4>; // 4 sub-pixel bits: raw = pixels * 16
@@ -40,11 +43,7 @@ const WIDE: [P; 3] = [
 /// change here means the rasterizer's output changed on the target or everywhere.
 const EXPECTED: u64 = 0xb1a6_9344_c4b8_5c2d;
 
-fn fnv1a64(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
-        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
-    })
-}
+use cube::fnv1a64;
 
 /// Runs `f` and returns the instructions it took: with `-icount shift=0`, SysTick on the
 /// core clock advances once per 40 instructions (see shared FIRMWARE.md).
@@ -75,6 +74,37 @@ fn scene(syst: &mut SYST, fb: &mut Fb) -> Result<(), pbuffer::Error<Infallible>>
     Ok(())
 }
 
+/// Renders the cube and checks its hash against the host's.
+fn cube_scene(syst: &mut SYST) -> debug::ExitStatus {
+    let mut fb = cube::CubeFrame::new();
+    let (r, n) = count(syst, || cube::render_cube(&mut fb, [3.0, 2.5, 4.0]));
+    match r {
+        Ok(stats) => {
+            let hash = fnv1a64(fb.as_bytes());
+            hprintln!(
+                "pbuffer-firmware: cube dashed 128x64, {} bands of 8 rows, {} feature edges: {} instructions, fnv1a64={:016x}",
+                stats.bands,
+                stats.feature_edges,
+                n,
+                hash
+            );
+            if hash == cube::EXPECTED_CUBE {
+                debug::EXIT_SUCCESS
+            } else {
+                hprintln!(
+                    "pbuffer-firmware: FAIL: expected fnv1a64={:016x}",
+                    cube::EXPECTED_CUBE
+                );
+                debug::EXIT_FAILURE
+            }
+        }
+        Err(e) => {
+            hprintln!("pbuffer-firmware: FAIL: render error {:?}", e);
+            debug::EXIT_FAILURE
+        }
+    }
+}
+
 #[entry]
 fn main() -> ! {
     let mut syst = cortex_m::Peripherals::take().unwrap().SYST;
@@ -103,6 +133,11 @@ fn main() -> ! {
             hprintln!("pbuffer-firmware: FAIL: fill error {:?}", e);
             debug::EXIT_FAILURE
         }
+    };
+    let status = if status == debug::EXIT_SUCCESS {
+        cube_scene(&mut syst)
+    } else {
+        status
     };
     debug::exit(status);
     loop {}
