@@ -112,6 +112,46 @@ impl MeshArrays {
     }
 }
 
+/// Storage for building a mesh's edge adjacency: the weld map and half-edge records
+/// (needed only while building) and the edge list (kept for rendering).
+pub struct AdjacencyStorage {
+    pub weld: Vec<u32>,
+    pub scratch: Vec<HalfEdgeRecord>,
+    pub edges: Vec<MeshEdge>,
+}
+
+impl AdjacencyStorage {
+    /// Storage large enough for `arrays`.
+    pub fn new(arrays: &MeshArrays) -> Self {
+        Self {
+            weld: vec![0; arrays.vertices.len()],
+            scratch: vec![HalfEdgeRecord::default(); arrays.indices.len()],
+            edges: vec![MeshEdge::default(); arrays.indices.len()],
+        }
+    }
+
+    /// Builds the adjacency of `mesh` with crease angle `crease_deg`.
+    pub fn build<'s>(
+        &'s mut self,
+        mesh: &Mesh<'_>,
+        crease_deg: f64,
+    ) -> Result<EdgeAdjacency<'s>, String> {
+        EdgeAdjacency::build(
+            mesh,
+            crease_deg as f32,
+            &mut self.weld,
+            &mut self.scratch,
+            &mut self.edges,
+        )
+        .map_err(|e| format!("adjacency: {e}"))
+    }
+
+    /// Bytes of the storage needed only while building (weld map, half-edge records).
+    pub fn build_bytes(&self) -> usize {
+        std::mem::size_of_val(self.weld.as_slice()) + std::mem::size_of_val(self.scratch.as_slice())
+    }
+}
+
 /// The library camera of a `CameraSpec`.
 pub fn camera(spec: &CameraSpec) -> Result<Camera, String> {
     let f = |v: [f64; 3]| v.map(|c| c as f32);
@@ -195,17 +235,9 @@ fn render_sd<Frac: LeEqU32, D: Depth>(
     let arrays = MeshArrays::new(data);
     let mesh = Mesh::new(&arrays.vertices, &arrays.indices, &arrays.offsets)
         .map_err(|e| format!("mesh: {e}"))?;
-    let mut weld = vec![0u32; arrays.vertices.len()];
-    let mut scratch = vec![HalfEdgeRecord::default(); arrays.indices.len()];
-    let mut edge_store = vec![MeshEdge::default(); arrays.indices.len()];
-    let adjacency = EdgeAdjacency::build(
-        &mesh,
-        spec.crease_deg as f32,
-        &mut weld,
-        &mut scratch,
-        &mut edge_store,
-    )
-    .map_err(|e| format!("adjacency: {e}"))?;
+    let mut storage = AdjacencyStorage::new(&arrays);
+    let build_bytes = storage.build_bytes();
+    let adjacency = storage.build(&mesh, spec.crease_deg)?;
     let camera = camera(cam)?;
     let settings = settings(spec)?;
     let (w, h) = (spec.width, spec.height);
@@ -230,8 +262,6 @@ fn render_sd<Frac: LeEqU32, D: Depth>(
     // map and half-edge records are needed only while the edge list is built (once
     // per mesh), so they are reported apart.
     let lent = ws.bytes() + std::mem::size_of_val(adjacency.edges());
-    let build_bytes =
-        std::mem::size_of_val(weld.as_slice()) + std::mem::size_of_val(scratch.as_slice());
     let mut renderer = Box::new(ZBufferRenderer::<Frac, EDGES, POLY>::new());
     let mut target = PackedFrame::new(w, h);
     let mut probe = Collect {

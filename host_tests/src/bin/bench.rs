@@ -571,7 +571,7 @@ mod scene3d {
     use host_tests::frame::{CameraSpec, MeshData, RenderSpec};
     use host_tests::obj::load_obj;
     use host_tests::pipeline::{render_frame, MeshArrays};
-    use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
+    use pbuffer::mesh::Mesh;
     use pbuffer::render::ProjectedVertex;
     use pbuffer::{MonoPalette, Workspace, ZBufferRenderer};
     use std::path::PathBuf;
@@ -616,17 +616,8 @@ mod scene3d {
         let arrays = MeshArrays::new(&data);
         let mesh = Mesh::new(&arrays.vertices, &arrays.indices, &arrays.offsets)
             .map_err(|e| format!("mesh: {e}"))?;
-        let mut weld = vec![0u32; arrays.vertices.len()];
-        let mut scratch = vec![HalfEdgeRecord::default(); arrays.indices.len()];
-        let mut edge_store = vec![MeshEdge::default(); arrays.indices.len()];
-        let adjacency = EdgeAdjacency::build(
-            &mesh,
-            spec.crease_deg as f32,
-            &mut weld,
-            &mut scratch,
-            &mut edge_store,
-        )
-        .map_err(|e| format!("adjacency: {e}"))?;
+        let mut storage = host_tests::pipeline::AdjacencyStorage::new(&arrays);
+        let adjacency = storage.build(&mesh, spec.crease_deg)?;
         let camera = host_tests::pipeline::camera(&cam)?;
         let settings = host_tests::pipeline::settings(&spec)?;
         let (w, band) = (spec.width, spec.band);
