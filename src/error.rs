@@ -47,7 +47,7 @@ pub enum Error<T = Infallible> {
         /// The offending vertex index.
         index: u32,
     },
-    /// A face has fewer than 3 distinct vertices (by position).
+    /// A face has fewer than 3 vertex indices.
     DegenerateFace {
         /// 0-based face index.
         face: usize,
@@ -142,7 +142,7 @@ impl<T: fmt::Debug> fmt::Display for Error<T> {
                 )
             }
             Error::DegenerateFace { face } => {
-                write!(f, "face {face} has fewer than 3 distinct vertices")
+                write!(f, "face {face} has fewer than 3 vertices")
             }
             Error::BadFaceOffsets { face } => write!(f, "face offsets are wrong at face {face}"),
             Error::EmptyMesh => f.write_str("the mesh has no faces"),

@@ -287,3 +287,35 @@ fn help_exits_zero() {
     assert_eq!(out.status.code(), Some(0));
     assert!(String::from_utf8_lossy(&out.stdout).contains("--mode"));
 }
+
+/// Regression: `Mesh::new` rejected faces whose positions repeat, so `render` refused
+/// OBJ files that CONVENTIONS.md calls valid (a face needs 3 valid indices). Such a
+/// face has a zero normal: it covers nothing, and only its one real edge is drawn
+/// (a boundary).
+#[test]
+fn a_face_with_a_repeated_vertex_renders_as_the_conventions_allow() {
+    let dir = Dir::new("repeated");
+    let obj = dir.file(
+        "repeated.obj",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 2\n",
+    );
+    let ids = dir.path("ids.pgm");
+    let out = render(&[s(&obj), "--stats", "--ids", s(&ids), "--cull", "off"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("faces: 2"), "{stdout}");
+    assert!(stdout.contains("feature_edges: 4"), "{stdout}");
+    // No pixel shows face 1 (the collapsed one): its id, 2, never appears.
+    let bytes = std::fs::read(&ids).unwrap();
+    let (_, samples) = pgm(&bytes);
+    assert!(samples
+        .chunks(2)
+        .all(|s| u16::from_be_bytes([s[0], s[1]]) != 2));
+    assert!(samples
+        .chunks(2)
+        .any(|s| u16::from_be_bytes([s[0], s[1]]) == 1));
+}

@@ -64,11 +64,13 @@ impl<'a> Mesh<'a> {
     /// 2. the face count: none is [`Error::EmptyMesh`], more than [`MAX_FACES`] is
     ///    [`Error::TooManyFaces`];
     /// 3. every vertex, in order: [`Error::NonFiniteVertex`];
-    /// 4. every face, in order: first its indices ([`Error::IndexOutOfRange`] with
-    ///    the first bad index), then [`Error::DegenerateFace`] when it has fewer than
-    ///    3 distinct positions (bit-identical coordinates count as one).
+    /// 4. every face, in order: [`Error::DegenerateFace`] when it has fewer than 3
+    ///    indices, then its indices ([`Error::IndexOutOfRange`] with the first bad
+    ///    index).
     ///
-    /// A face of 3 distinct but collinear positions is valid: its normal is zero.
+    /// As in CONVENTIONS.md, a face needs 3 valid indices, nothing more: a face whose
+    /// positions repeat (`f 1 2 1`) or lie on a line is valid, with a zero normal, so
+    /// it covers no pixel and makes no crease or silhouette.
     pub fn new(
         vertices: &'a [[f32; 3]],
         indices: &'a [u32],
@@ -99,11 +101,11 @@ impl<'a> Mesh<'a> {
         };
         for face in 0..faces {
             let corners = mesh.face(face);
+            if corners.len() < 3 {
+                return Err(Error::DegenerateFace { face });
+            }
             if let Some(&index) = corners.iter().find(|&&i| mesh.position_bits(i).is_none()) {
                 return Err(Error::IndexOutOfRange { face, index });
-            }
-            if !mesh.has_three_positions(corners) {
-                return Err(Error::DegenerateFace { face });
             }
             mesh.max_face_len = mesh.max_face_len.max(corners.len());
         }
@@ -206,20 +208,6 @@ impl<'a> Mesh<'a> {
     /// positions weld. `None` when there is no such vertex.
     pub(crate) fn position_bits(&self, i: u32) -> Option<[u32; 3]> {
         self.vertices.get(i as usize).map(|p| p.map(f32::to_bits))
-    }
-
-    /// Do these corners name at least 3 distinct positions?
-    fn has_three_positions(&self, corners: &[u32]) -> bool {
-        let mut positions = corners.iter().filter_map(|&i| self.position_bits(i));
-        let Some(first) = positions.next() else {
-            return false;
-        };
-        // Everything before the second distinct position equals the first, so the
-        // third can only come after it: one pass suffices.
-        let Some(second) = positions.find(|p| *p != first) else {
-            return false;
-        };
-        positions.any(|p| p != first && p != second)
     }
 }
 
