@@ -38,7 +38,11 @@ const GAPS: [usize; 26] = [
 pub(crate) fn sort_by_key<T, K: Ord>(items: &mut [T], key: impl Fn(&T) -> K) {
     let len = items.len();
     // A polygon's few edges: straight to the insertion sort, without walking the gaps.
-    let gaps = if len <= 16 { &GAPS[GAPS.len() - 1..] } else { &GAPS[..] };
+    let gaps = if len <= 16 {
+        &GAPS[GAPS.len() - 1..]
+    } else {
+        &GAPS[..]
+    };
     for gap in gaps.iter().copied().filter(|&g| g < len) {
         for i in gap..len {
             let mut j = i;
