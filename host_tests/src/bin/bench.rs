@@ -867,31 +867,7 @@ fn run_scene3d(markdown: bool, jobs: usize) -> ExitCode {
             None => "valgrind not found: instruction counts skipped".into(),
         },
     ];
-    if markdown {
-        out += "### Checks\n\n";
-        for c in &checks {
-            let _ = writeln!(out, "- {c}");
-        }
-        for f in &failures {
-            let _ = writeln!(out, "- FAILURE: {f}");
-        }
-    } else {
-        out += "checks:\n";
-        for c in &checks {
-            let _ = writeln!(out, "  {c}");
-        }
-        for f in &failures {
-            let _ = writeln!(out, "  FAILURE: {f}");
-        }
-    }
-    print!("{out}");
-    if !failures.is_empty() {
-        ExitCode::from(1)
-    } else if measured.is_none() {
-        ExitCode::from(2)
-    } else {
-        ExitCode::SUCCESS
-    }
+    finish_report(out, &checks, &failures, markdown, measured.is_some())
 }
 
 // ---------------------------------------------------------------- main
@@ -1220,27 +1196,34 @@ fn main() -> ExitCode {
     } else {
         checks.push("valgrind not found: instruction counts skipped".into());
     }
-    if markdown {
-        out += "### Checks\n\n";
-        for c in &checks {
-            let _ = writeln!(out, "- {c}");
-        }
-        for f in &failures {
-            let _ = writeln!(out, "- FAILURE: {f}");
-        }
+    finish_report(out, &checks, &failures, markdown, measured.is_some())
+}
+
+/// Prints a report with its checks and failures; the exit status is 1 on a failure,
+/// 2 when nothing could be measured (no valgrind), else success.
+fn finish_report(
+    mut out: String,
+    checks: &[String],
+    failures: &[String],
+    markdown: bool,
+    measured: bool,
+) -> ExitCode {
+    let (heading, bullet) = if markdown {
+        ("### Checks\n\n", "- ")
     } else {
-        out += "checks:\n";
-        for c in &checks {
-            let _ = writeln!(out, "  {c}");
-        }
-        for f in &failures {
-            let _ = writeln!(out, "  FAILURE: {f}");
-        }
+        ("checks:\n", "  ")
+    };
+    out += heading;
+    for c in checks {
+        let _ = writeln!(out, "{bullet}{c}");
+    }
+    for f in failures {
+        let _ = writeln!(out, "{bullet}FAILURE: {f}");
     }
     print!("{out}");
     if !failures.is_empty() {
         ExitCode::from(1)
-    } else if measured.is_none() {
+    } else if !measured {
         ExitCode::from(2)
     } else {
         ExitCode::SUCCESS
