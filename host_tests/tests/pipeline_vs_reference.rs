@@ -2,7 +2,8 @@
 //! Z-buffer + P-buffer) against the independent f64 reference (`reference3d`), by the
 //! metrics of `host_tests::metrics`: surfaces (ids, mode `surfaces`) must have no holes,
 //! no wrong faces, no depth-order errors and no face-id differences away from edges;
-//! lines (mode `dashed`) must stay within the misclassified / missing limits.
+//! lines (mode `dashed`) must stay within the misclassified / missing limits. Each scene
+//! runs at one full-frame band with 32-bit depth and in 8-row bands with 16-bit depth.
 //! One report line per scene: `cargo test --release -p host_tests --test
 //! pipeline_vs_reference -- --nocapture`.
 
@@ -43,14 +44,16 @@ fn run_scene(
     };
     let ref_ms = t.elapsed().as_secs_f64() * 1e3;
     for mode in [ModeSpec::Surfaces, ModeSpec::Dashed] {
-        for band in [height, 8] {
+        // One full-frame band with 32-bit depth, and 8-row bands with 16-bit depth.
+        for (band, depth_bits) in [(height, 32), (8, 16)] {
             let spec = RenderSpec {
                 mode,
                 band,
+                depth_bits,
                 ..base.clone()
             };
             let label = format!(
-                "{name} {width}x{height} {} band {band}",
+                "{name} {width}x{height} {} band {band} depth {depth_bits}",
                 if mode == ModeSpec::Surfaces {
                     "surf"
                 } else {
