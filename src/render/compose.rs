@@ -145,19 +145,23 @@ pub(crate) fn emit_band<D, K: SpanSink, P: Palette<Color = K::Color>, R: FramePr
             Ok(())
         };
         if settings.mode.draws_faces() {
-            for (x, &id) in ids.iter().enumerate() {
-                let x16 = x as u16;
-                let color = if line_word(x / 32) & (1 << (x % 32)) != 0 {
-                    Some(palette.line())
-                } else if id != 0 && bit(drawn, usize::from(id - 1)) {
-                    if shade_of.0 != id {
-                        shade_of = (id, shade(ctx, view, usize::from(id - 1)));
-                    }
-                    palette.face(id - 1, shade_of.1, x16, y)
-                } else {
-                    None
-                };
-                put(x16, color, sink)?;
+            // One line word (visible, hidden and pattern) per 32 pixels, not per pixel.
+            for (k, chunk) in ids.chunks(32).enumerate() {
+                let word = line_word(k);
+                for (i, &id) in chunk.iter().enumerate() {
+                    let x16 = (32 * k + i) as u16;
+                    let color = if word & (1 << i) != 0 {
+                        Some(palette.line())
+                    } else if id != 0 && bit(drawn, usize::from(id - 1)) {
+                        if shade_of.0 != id {
+                            shade_of = (id, shade(ctx, view, usize::from(id - 1)));
+                        }
+                        palette.face(id - 1, shade_of.1, x16, y)
+                    } else {
+                        None
+                    };
+                    put(x16, color, sink)?;
+                }
             }
         } else {
             let line = palette.line();
