@@ -1041,25 +1041,11 @@ mod tests {
         assert!((r.depth[3 * 8 + 4] - 1.0).abs() < 1e-12);
     }
 
+    /// An axis-aligned box from its corners (`shapes::add_box` without rotation).
     fn boxm(lo: V3, hi: V3, m: &mut MeshData) {
-        let base = m.vertices.len() as u32;
-        for k in 0..8 {
-            m.vertices.push([
-                if k & 1 != 0 { hi[0] } else { lo[0] },
-                if k & 2 != 0 { hi[1] } else { lo[1] },
-                if k & 4 != 0 { hi[2] } else { lo[2] },
-            ]);
-        }
-        for f in [
-            [0, 4, 6, 2], // -x
-            [1, 3, 7, 5], // +x
-            [0, 1, 5, 4], // -y
-            [2, 6, 7, 3], // +y
-            [0, 2, 3, 1], // -z
-            [4, 5, 7, 6], // +z
-        ] {
-            m.faces.push(f.iter().map(|&i| base + i).collect());
-        }
+        let centre = [0, 1, 2].map(|i| (lo[i] + hi[i]) / 2.0);
+        let half = [0, 1, 2].map(|i| (hi[i] - lo[i]) / 2.0);
+        crate::shapes::add_box(m, centre, half, 0.0, 0.0);
     }
 
     /// A small box in front of a big box, seen orthographically along -Z (1 unit = 1 px
