@@ -68,6 +68,13 @@ pub enum Error<T = Infallible> {
     },
     /// The camera cannot make a view.
     BadCamera(CameraProblem),
+    /// A row needs a wider surface code than the engine was compiled for.
+    CodeTooWide {
+        /// Bits the widest row needs.
+        needed: usize,
+        /// Bits compiled in.
+        capacity: usize,
+    },
     /// The span sink or draw target failed.
     Target(T),
 }
@@ -111,6 +118,7 @@ impl Error<Infallible> {
             Error::EmptyMesh => Error::EmptyMesh,
             Error::TooManyFaces { faces, max } => Error::TooManyFaces { faces, max },
             Error::BadCamera(p) => Error::BadCamera(p),
+            Error::CodeTooWide { needed, capacity } => Error::CodeTooWide { needed, capacity },
             Error::Target(never) => match never {},
         }
     }
@@ -150,6 +158,10 @@ impl<T: fmt::Debug> fmt::Display for Error<T> {
                 write!(f, "the mesh has {faces} faces, at most {max} are supported")
             }
             Error::BadCamera(p) => write!(f, "bad camera: {p:?}"),
+            Error::CodeTooWide { needed, capacity } => write!(
+                f,
+                "a row needs a {needed}-bit surface code, {capacity} bits are compiled in"
+            ),
             Error::Target(e) => write!(f, "draw target failed: {e:?}"),
         }
     }
