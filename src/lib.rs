@@ -46,7 +46,8 @@ pub use mesh::{
 };
 pub use pattern::Pattern;
 pub use render::{
-    Cull, DrawMode, MonoPalette, Palette, Settings, SolidPalette, Stats, Workspace, ZBufferRenderer,
+    CodeFillRenderer, CodeWorkspace, Cull, DrawMode, MonoPalette, Palette, Settings, SolidPalette,
+    Stats, Workspace, ZBufferRenderer,
 };
 pub use scan::{FillRule, ScanConverter};
 pub use span::{ContiguousRows, FillSolid, Span, SpanSink, ROW_SEGMENTS};

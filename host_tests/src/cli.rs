@@ -7,7 +7,9 @@
 use std::path::PathBuf;
 
 use crate::fit::fit_camera;
-use crate::frame::{CameraSpec, CullSpec, MeshData, ModeSpec, ProjectionSpec, RenderSpec};
+use crate::frame::{
+    CameraSpec, CullSpec, EngineSpec, MeshData, ModeSpec, ProjectionSpec, RenderSpec,
+};
 
 /// The usage text printed by `--help` and after a usage error.
 pub const USAGE: &str = "\
@@ -25,7 +27,7 @@ rendering
   --crease DEG         crease angle in [0, 180] (default 30)
   --cull on|off|auto   back-face culling (default auto: on for closed meshes)
   --mode M             wireframe | hidden | dashed | surfaces | surfaces+dashed (default dashed)
-  --engine zbuffer     visibility engine (only zbuffer for now)
+  --engine E           codefill | zbuffer (default codefill)
   --subpixel S         sub-pixel bits 0..=12 (default 4)
   --depth-bits 16|32   depth precision (default 32)
   --band ROWS          rows per depth band, 1..=height (default: the height)
@@ -42,13 +44,6 @@ exit status: 0 ok, 2 bad input (file, OBJ, flag or value), 1 rendering failed";
 
 /// Largest frame side accepted.
 pub const MAX_SIDE: usize = 8192;
-
-/// Visibility engine.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Engine {
-    #[default]
-    ZBuffer,
-}
 
 /// The colour scheme of the PNG.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -77,7 +72,6 @@ pub struct Options {
     pub spec: RenderSpec,
     /// `--band` as given (the default is the height, known after `--size`).
     pub band: Option<usize>,
-    pub engine: Engine,
     pub out: Option<PathBuf>,
     pub look: Look,
     pub scale: usize,
@@ -101,7 +95,6 @@ impl Default for Options {
             far: None,
             spec: RenderSpec::default(),
             band: None,
-            engine: Engine::ZBuffer,
             out: None,
             look: Look::default(),
             scale: 3,
@@ -281,13 +274,10 @@ where
                 }
             }
             "--engine" => {
-                o.engine = match v.as_str() {
-                    "zbuffer" => Engine::ZBuffer,
-                    _ => {
-                        return Err(format!(
-                            "--engine: `{v}` is not available (only zbuffer for now)"
-                        ))
-                    }
+                o.spec.engine = match v.as_str() {
+                    "codefill" => EngineSpec::CodeFill,
+                    "zbuffer" => EngineSpec::ZBuffer,
+                    _ => return Err(format!("--engine: `{v}` is not codefill or zbuffer")),
                 }
             }
             "--subpixel" => o.spec.subpixel = int_in(flag, &v, 0, 12)? as u32,
@@ -546,7 +536,7 @@ mod tests {
             (&["--crease", "200"], "--crease"),
             (&["--cull", "maybe"], "--cull"),
             (&["--mode", "solid"], "--mode"),
-            (&["--engine", "codefill"], "--engine"),
+            (&["--engine", "scanline"], "--engine"),
             (&["--subpixel", "13"], "--subpixel"),
             (&["--depth-bits", "24"], "--depth-bits"),
             (&["--band", "0"], "--band"),

@@ -70,9 +70,20 @@ pub enum ModeSpec {
     SurfacesDashed,
 }
 
+/// Visibility engine.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum EngineSpec {
+    /// Modulo-2 surface codes per row, no depth buffer.
+    #[default]
+    CodeFill,
+    /// Depth buffer in bands.
+    ZBuffer,
+}
+
 /// Render settings.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RenderSpec {
+    pub engine: EngineSpec,
     pub width: usize,
     pub height: usize,
     pub crease_deg: f64,
@@ -91,6 +102,7 @@ pub struct RenderSpec {
 impl Default for RenderSpec {
     fn default() -> Self {
         Self {
+            engine: EngineSpec::CodeFill,
             width: 400,
             height: 240,
             crease_deg: 30.0,

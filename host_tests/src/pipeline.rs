@@ -7,15 +7,20 @@ use fixed::types::extra::{LeEqU32, U0, U1, U10, U11, U12, U2, U3, U4, U5, U6, U7
 use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
 use pbuffer::render::{Depth, FrameProbe, ProjectedVertex};
 use pbuffer::{
-    Camera, Cull, DrawMode, MonoPalette, Pattern, Projection, Settings, Span, SpanSink, Viewport,
-    Workspace, ZBufferRenderer,
+    Camera, CodeFillRenderer, CodeWorkspace, Cull, DrawMode, MonoPalette, Pattern, Projection,
+    Settings, Span, SpanSink, Stats, Viewport, Workspace, ZBufferRenderer,
 };
 
-use crate::frame::{CameraSpec, CullSpec, Frame, MeshData, ModeSpec, ProjectionSpec, RenderSpec};
+use crate::frame::{
+    CameraSpec, CullSpec, EngineSpec, Frame, MeshData, ModeSpec, ProjectionSpec, RenderSpec,
+};
 
 /// Scan-converter edge capacity and clipped-polygon capacity used on the host.
 const EDGES: usize = 512;
 const POLY: usize = 512;
+/// Code-fill engine on the host: code words (32 bits each) and active edges.
+pub const CODE_WORDS: usize = 32;
+pub const ACTIVE_EDGES: usize = 8192;
 
 /// A packed 1-bpp frame of any size (the `PackedFramebuffer` layout), as a span sink.
 #[derive(Debug)]
@@ -220,6 +225,9 @@ fn render_s<Frac: LeEqU32>(
     cam: &CameraSpec,
     spec: &RenderSpec,
 ) -> Result<Frame, String> {
+    if spec.engine == EngineSpec::CodeFill {
+        return render_code::<Frac>(mesh, cam, spec);
+    }
     match spec.depth_bits {
         16 => render_sd::<Frac, u16>(mesh, cam, spec),
         32 => render_sd::<Frac, u32>(mesh, cam, spec),
@@ -284,7 +292,22 @@ fn render_sd<Frac: LeEqU32, D: Depth>(
         .map_err(|e| format!("render: {e}"))?;
     let time_us = start.elapsed().as_micros() as u64;
     let working = lent + std::mem::size_of::<ZBufferRenderer<Frac, EDGES, POLY>>();
-    Ok(Frame {
+    Ok(frame(w, h, probe, target, &stats, working, build_bytes, time_us))
+}
+
+/// The frame and its `--stats` figures.
+#[allow(clippy::too_many_arguments)]
+fn frame(
+    w: usize,
+    h: usize,
+    probe: Collect,
+    target: PackedFrame,
+    stats: &Stats,
+    working: usize,
+    build_bytes: usize,
+    time_us: u64,
+) -> Frame {
+    Frame {
         width: w,
         height: h,
         ids: probe.ids,
@@ -301,9 +324,69 @@ fn render_sd<Frac: LeEqU32, D: Depth>(
                 "depth_buffer_bytes".into(),
                 u64::from(stats.depth_buffer_bytes),
             ),
+            ("code_bits".into(), u64::from(stats.code_bits)),
             ("working_ram_bytes".into(), working as u64),
             ("adjacency_build_bytes".into(), build_bytes as u64),
             ("time_us".into(), time_us),
         ],
-    })
+    }
+}
+
+/// The code-fill engine: no depth buffer; ids for the band and its apron.
+fn render_code<Frac: LeEqU32>(
+    data: &MeshData,
+    cam: &CameraSpec,
+    spec: &RenderSpec,
+) -> Result<Frame, String> {
+    let arrays = MeshArrays::new(data);
+    let mesh = Mesh::new(&arrays.vertices, &arrays.indices, &arrays.offsets)
+        .map_err(|e| format!("mesh: {e}"))?;
+    let mut storage = AdjacencyStorage::new(&arrays);
+    let build_bytes = storage.build_bytes();
+    let adjacency = storage.build(&mesh, spec.crease_deg)?;
+    let camera = camera(cam)?;
+    let settings = settings(spec)?;
+    let (w, h) = (spec.width, spec.height);
+    let band = spec.band.clamp(1, h.max(1));
+    let row_words = w.div_ceil(32);
+    let mut vertices = vec![ProjectedVertex::default(); arrays.vertices.len()];
+    let mut drawn = vec![0u32; mesh.face_count().div_ceil(32)];
+    let mut features = vec![0u32; adjacency.edges().len().div_ceil(32)];
+    let mut order = vec![0u32; mesh.face_count()];
+    let stored = usize::from(pbuffer::render::storage_rows(band as u16, h as u16));
+    let mut ids = vec![0u16; w * stored];
+    let mut lines = vec![0u32; 2 * row_words * band];
+    let mut ws = CodeWorkspace {
+        vertices: &mut vertices,
+        drawn: &mut drawn,
+        features: &mut features,
+        order: &mut order,
+        ids: &mut ids,
+        lines: &mut lines,
+    };
+    let lent = ws.bytes() + std::mem::size_of_val(adjacency.edges());
+    type Engine<F> = CodeFillRenderer<F, CODE_WORDS, ACTIVE_EDGES, POLY>;
+    let mut renderer = Box::new(Engine::<Frac>::new());
+    let mut target = PackedFrame::new(w, h);
+    let mut probe = Collect {
+        width: w,
+        ids: vec![0; w * h],
+        lines: vec![0; w * h],
+    };
+    let start = Instant::now();
+    let stats = renderer
+        .render(
+            &mesh,
+            &adjacency,
+            &camera,
+            &settings,
+            &mut ws,
+            &MonoPalette::default(),
+            &mut target,
+            &mut probe,
+        )
+        .map_err(|e| format!("render: {e}"))?;
+    let time_us = start.elapsed().as_micros() as u64;
+    let working = lent + std::mem::size_of::<Engine<Frac>>();
+    Ok(frame(w, h, probe, target, &stats, working, build_bytes, time_us))
 }

@@ -3,7 +3,7 @@
 use embedded_graphics_core::pixelcolor::{BinaryColor, PixelColor};
 
 use super::lines::LineMasks;
-use super::zband::ZBand;
+use super::zband::IdBand;
 use super::{bit, DrawMode, FrameCtx, Settings};
 use crate::mesh::Viewpoint;
 use crate::{Span, SpanSink};
@@ -96,14 +96,13 @@ fn shade(ctx: &FrameCtx<'_, '_>, view: &Viewpoint, f: usize) -> u8 {
 
 /// Sends the band's rows to the sink; returns the number of spans sent.
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn emit_band<D, K: SpanSink, P: Palette<Color = K::Color>, R: FrameProbe>(
+pub(crate) fn emit_band<K: SpanSink, P: Palette<Color = K::Color>, R: FrameProbe>(
     ctx: &FrameCtx<'_, '_>,
     settings: &Settings,
-    band: &ZBand<'_, D>,
+    band: &IdBand<'_>,
     masks: &LineMasks<'_>,
     drawn: &[u32],
     palette: &P,
-    view: &Viewpoint,
     sink: &mut K,
     probe: &mut R,
 ) -> Result<u32, K::Error> {
@@ -112,11 +111,7 @@ pub(crate) fn emit_band<D, K: SpanSink, P: Palette<Color = K::Color>, R: FramePr
     let mut shade_of: (u16, u8) = (0, 0);
     for r in 0..band.rows {
         let y = band.top + r;
-        let start = band.index(0, y).unwrap_or(usize::MAX);
-        let ids = band
-            .ids
-            .get(start..start.saturating_add(width))
-            .unwrap_or(&[]);
+        let ids = band.row(y);
         let (visible, hidden) = masks.row(r);
         probe.row(y, ids, visible, hidden);
         let line_word = |k: usize| -> u32 {
@@ -154,7 +149,7 @@ pub(crate) fn emit_band<D, K: SpanSink, P: Palette<Color = K::Color>, R: FramePr
                         Some(palette.line())
                     } else if id != 0 && bit(drawn, usize::from(id - 1)) {
                         if shade_of.0 != id {
-                            shade_of = (id, shade(ctx, view, usize::from(id - 1)));
+                            shade_of = (id, shade(ctx, &ctx.viewpoint, usize::from(id - 1)));
                         }
                         palette.face(id - 1, shade_of.1, x16, y)
                     } else {

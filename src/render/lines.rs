@@ -2,7 +2,12 @@
 //! pixel centre along its major axis; each pixel takes the visibility of the edge
 //! point there. Results go into two bit masks per band row (visible, hidden).
 
-use super::transform::ScreenVertex;
+use heapless::Vec;
+
+use super::transform::{ProjectedVertex, ScreenVertex};
+use super::zband::{DepthPlane, IdBand};
+use super::{bit, face_polygon, FrameCtx, Settings};
+use crate::mesh::{face_owns_edge, EdgeAdjacency, EdgeKind, Mesh, MeshEdge};
 
 /// Visible and hidden line pixels of one band, bit-packed: bit `k` of word `w` of a
 /// row is pixel `32w + k`.
@@ -215,3 +220,188 @@ pub(crate) fn polygon_contains(poly: &[ScreenVertex], x: i64, y: i64) -> bool {
     }
     inside
 }
+
+/// Draws the feature edges that reach the band into the masks.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn line_pass<const POLY: usize>(
+    ctx: &FrameCtx<'_, '_>,
+    vertices: &[ProjectedVertex],
+    drawn: &[u32],
+    features: &[u32],
+    edges: &EdgeAdjacency<'_>,
+    settings: &Settings,
+    band: &IdBand<'_>,
+    masks: &mut LineMasks<'_>,
+) {
+    let hide = settings.mode.needs_depth();
+    // The last face tested for covering an edge point, with its polygon and plane.
+    let mut cache = FaceCache::<POLY>::new();
+    for (e, edge) in edges.edges().iter().enumerate() {
+        if !bit(features, e) {
+            continue;
+        }
+        let Some((a, b)) = edge_on_screen(ctx, vertices, edge) else {
+            continue;
+        };
+        let rows = band.top..band.top + band.rows;
+        walk_segment(&a, &b, ctx.s, ctx.viewport.width, rows, |px| {
+            let hidden = hide && hidden(ctx, vertices, drawn, edge, band, &px, &mut cache);
+            masks.set(px.x, px.y - band.top, hidden);
+        });
+    }
+}
+
+/// The edge clipped to the view and projected, or `None` when it is out of view.
+pub(crate) fn edge_on_screen(
+    ctx: &FrameCtx<'_, '_>,
+    vertices: &[ProjectedVertex],
+    edge: &MeshEdge,
+) -> Option<(ScreenVertex, ScreenVertex)> {
+    let (pa, pb) = (
+        vertices.get(edge.a as usize)?,
+        vertices.get(edge.b as usize)?,
+    );
+    if pa.outside & pb.outside != 0 {
+        return None;
+    }
+    if pa.outside | pb.outside == 0 {
+        return Some((pa.screen, pb.screen));
+    }
+    let (first, last) = ctx
+        .view
+        .clip_segment(pa.clip, pb.clip, pa.outside | pb.outside)?;
+    Some((ctx.view.project(&first), ctx.view.project(&last)))
+}
+
+/// The last two faces tested by the line pass: polygon and depth plane.
+struct FaceCache<const POLY: usize> {
+    slots: [(u16, Vec<ScreenVertex, POLY>, Option<DepthPlane>); 2],
+    next: usize,
+}
+
+impl<const POLY: usize> FaceCache<POLY> {
+    fn new() -> Self {
+        Self {
+            slots: [(0, Vec::new(), None), (0, Vec::new(), None)],
+            next: 0,
+        }
+    }
+
+    /// Slot of face `id` (1 + index), filled in place when missing: the polygon
+    /// buffers are large, so they never move.
+    fn get(
+        &mut self,
+        ctx: &FrameCtx<'_, '_>,
+        vertices: &[ProjectedVertex],
+        drawn: &[u32],
+        id: u16,
+    ) -> &(u16, Vec<ScreenVertex, POLY>, Option<DepthPlane>) {
+        let k = match self.slots.iter().position(|slot| slot.0 == id) {
+            Some(k) => k,
+            None => {
+                let k = self.next;
+                self.next ^= 1;
+                let (cid, poly, plane) = &mut self.slots[k];
+                let f = usize::from(id - 1);
+                *cid = id;
+                *plane = None;
+                if bit(drawn, f) && face_polygon(ctx, vertices, f, poly).unwrap_or(false) {
+                    *plane = DepthPlane::new(poly, ctx.s);
+                }
+                k
+            }
+        };
+        &self.slots[k]
+    }
+}
+
+/// Whether the edge point of `px` is hidden. The face nearest at the pixel centre
+/// decides, or, when it does not contain the edge point (up to half a pixel off the
+/// centre), the face nearest at the neighbouring centre on that side, if that one
+/// contains it. A face that contains the point hides it when nearer by a small
+/// margin; the centre's face extended to the point needs a wide one (see [`nearer`]).
+fn hidden<const POLY: usize>(
+    ctx: &FrameCtx<'_, '_>,
+    vertices: &[ProjectedVertex],
+    drawn: &[u32],
+    edge: &MeshEdge,
+    band: &IdBand<'_>,
+    px: &EdgePixel,
+    cache: &mut FaceCache<POLY>,
+) -> bool {
+    let own = |id: u16| {
+        let f = usize::from(id - 1);
+        edge.faces[..(edge.face_count.min(2) as usize)]
+            .iter()
+            .any(|&g| g as usize == f)
+            || (edge.kind == EdgeKind::NonManifold && face_owns_edge(ctx.mesh, edge, f))
+    };
+    let centre = |k: u16| (2 * i64::from(k) + 1) << ctx.s;
+    // The neighbour on the side of the edge point (the minor axis of the edge).
+    let (dx, dy) = (px.px - centre(px.x), px.py - centre(px.y));
+    let step = |d: i64, k: u16| match d.signum() {
+        -1 => k.checked_sub(1),
+        1 => k.checked_add(1),
+        _ => None,
+    };
+    let beside = if dy != 0 {
+        step(dy, px.y).map(|y| band.id(px.x, y))
+    } else {
+        step(dx, px.x).map(|x| band.id(x, px.y))
+    };
+    let nearest = band.id(px.x, px.y);
+    let mut extended = None;
+    for id in [Some(nearest), beside]
+        .into_iter()
+        .flatten()
+        .filter(|&id| id != 0)
+    {
+        if own(id) {
+            return false;
+        }
+        let (_, poly, plane) = cache.get(ctx, vertices, drawn, id);
+        let Some(plane) = *plane else { continue };
+        if polygon_contains(poly, px.px, px.py) {
+            return nearer(&plane, px, REACH_COVERING);
+        }
+        // Only the face at the pixel centre is extended to the point; a neighbour
+        // counts only where it covers the point.
+        if id == nearest {
+            extended = Some((plane, id));
+        }
+    }
+    match extended {
+        // Extended to the point and sharing a vertex with the edge, it cannot say:
+        // beside a vertex every incident face passes close to the edge.
+        Some((plane, id)) if !touches(ctx.mesh, edge, usize::from(id - 1)) => {
+            nearer(&plane, px, REACH_EXTENDED)
+        }
+        _ => false,
+    }
+}
+
+/// True when `plane` is strictly nearer than the edge point, beyond the uncertainty
+/// of sampling at pixel centres: the rounding of fixed-point depth, plus `reach`
+/// sixteenths of the plane's depth change over one pixel. This also keeps an edge
+/// that lies in another face's plane visible: equal depth does not hide.
+fn nearer(plane: &DepthPlane, px: &EdgePixel, reach: u64) -> bool {
+    let slope = (u64::from(plane.change_per_pixel()) * reach) >> 4;
+    let eps = (px.q >> 16).max(1 << 8) + slope.min(1 << 31) as u32;
+    plane.at(px.px, px.py) > px.q.saturating_add(eps)
+}
+
+/// Depth margins of the line test, in sixteenths of a pixel's depth change along the
+/// hiding face. A face that covers the edge point: only the point's snapping is
+/// uncertain. A face extended to the point: a grazing face beside a silhouette,
+/// extended, passes just in front of its edge. Both were chosen against the f64
+/// reference (`host_tests/tests/pipeline_vs_reference.rs`).
+const REACH_COVERING: u64 = 1;
+const REACH_EXTENDED: u64 = 32;
+
+/// True when face `f` has a vertex at the position of one of `edge`'s ends.
+fn touches(mesh: &Mesh<'_>, edge: &MeshEdge, f: usize) -> bool {
+    let key = |v: u32| mesh.vertices().get(v as usize).map(|p| p.map(f32::to_bits));
+    let ends = [key(edge.a), key(edge.b)];
+    mesh.face(f).iter().any(|&v| ends.contains(&key(v)))
+}
+

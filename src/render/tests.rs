@@ -6,6 +6,8 @@ use std::vec::Vec;
 
 use fixed::types::extra::U4;
 
+use super::lines::{edge_on_screen, walk_segment};
+use super::transform::FixedView;
 use super::*;
 use crate::mesh::{HalfEdgeRecord, MeshEdge};
 use crate::{PackedFramebuffer, Projection};
@@ -217,6 +219,7 @@ fn convex_solids_never_draw_a_visible_edge_pixel_dashed() {
                     width: 96,
                     height: 64,
                 },
+                viewpoint: camera.viewpoint(),
             };
             let viewpoint = camera.viewpoint();
             for edge in adj.edges() {

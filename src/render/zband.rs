@@ -186,12 +186,61 @@ impl DepthPlane {
     }
 }
 
-/// Depth and face ids of one band of rows, plus an apron of one row above and below
-/// (inside the frame) so that the line test can look at a pixel's vertical neighbour
-/// whatever the band height. Faces' spans go in through [`FaceSpans`].
+/// One face's nearness along one row, `q(x) = row_q + dq_dx x`, moved down a row by
+/// `dq_dy`: the same values [`FaceSpans`] steps to, without a depth buffer.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(crate) struct RowPlane {
+    row_q: i64,
+    dq_dx: i64,
+    dq_dy: i64,
+    q_min: i64,
+    q_max: i64,
+}
+
+impl RowPlane {
+    /// Nearness 0 everywhere.
+    pub const ZERO: Self = Self {
+        row_q: 0,
+        dq_dx: 0,
+        dq_dy: 0,
+        q_min: 0,
+        q_max: 0,
+    };
+
+    /// Nearness at the centre of pixel `x` of the row, as a 32-bit depth sample.
+    #[inline]
+    pub fn at(&self, x: u16) -> u32 {
+        // No wrap can happen: |dq_dx| <= 2^47, x < 2^13 and |row_q| < 2^62 (see
+        // `DepthPlane::new`); wrapping ops only spare the overflow checks.
+        let q = self.row_q.wrapping_add(self.dq_dx.wrapping_mul(i64::from(x)));
+        (q.clamp(self.q_min, self.q_max) >> STEP_BITS) as u32
+    }
+
+    /// Moves to the next row.
+    #[inline]
+    pub fn step(&mut self) {
+        self.row_q = self.row_q.wrapping_add(self.dq_dy);
+    }
+}
+
+impl DepthPlane {
+    /// The plane along row `y`.
+    pub fn row_plane(&self, y: u16) -> RowPlane {
+        RowPlane {
+            row_q: self.at_pixel(0, y),
+            dq_dx: self.dq_dx,
+            dq_dy: self.dq_dy,
+            q_min: self.q_min,
+            q_max: self.q_max,
+        }
+    }
+}
+
+/// Face ids of one band of rows, plus an apron of one row above and below (inside
+/// the frame) so that the line test can look at a pixel's vertical neighbour
+/// whatever the band height.
 #[derive(Debug)]
-pub(crate) struct ZBand<'s, D> {
-    pub depth: &'s mut [D],
+pub(crate) struct IdBand<'s> {
     /// 0 for no face, else 1 + face index.
     pub ids: &'s mut [u16],
     pub width: u16,
@@ -203,7 +252,19 @@ pub(crate) struct ZBand<'s, D> {
     pub held: u16,
 }
 
-impl<D: Depth> ZBand<'_, D> {
+impl<'s> IdBand<'s> {
+    /// An empty band over `ids`, `width` pixels wide.
+    pub fn new(ids: &'s mut [u16], width: u16) -> Self {
+        Self {
+            ids,
+            width,
+            top: 0,
+            rows: 0,
+            first: 0,
+            held: 0,
+        }
+    }
+
     /// Rows of storage a band of `rows` own rows needs in a frame `height` high.
     pub fn rows_needed(rows: u16, height: u16) -> u16 {
         if rows >= height {
@@ -213,22 +274,28 @@ impl<D: Depth> ZBand<'_, D> {
         }
     }
 
-    /// Starts the band of rows `top .. top + rows` of a frame `height` high: no face
-    /// anywhere. Depth is left as it is: a pixel without a face takes any face's
-    /// depth (see [`FaceSpans`]).
-    pub fn reset(&mut self, top: u16, rows: u16, height: u16) {
+    /// Moves to the band of rows `top .. top + rows` of a frame `height` high.
+    /// Rows held both before and after keep their ids (moved to their new place);
+    /// returns the first row that was not held before.
+    pub fn advance(&mut self, top: u16, rows: u16, height: u16) -> u16 {
+        let (old_first, old_end) = (self.first, self.first + self.held);
         self.top = top;
         self.rows = rows;
         self.first = top.saturating_sub(1);
         self.held = (top + rows + 1).min(height) - self.first;
-        let n = usize::from(self.width) * usize::from(self.held);
-        if let Some(ids) = self.ids.get_mut(..n) {
-            ids.fill(0);
+        let w = usize::from(self.width);
+        if old_first <= self.first && self.first < old_end {
+            let from = usize::from(self.first - old_first) * w;
+            let to = usize::from(old_end - old_first) * w;
+            if from < to && to <= self.ids.len() {
+                self.ids.copy_within(from..to, 0);
+            }
+            old_end
+        } else {
+            self.first
         }
     }
-}
 
-impl<D> ZBand<'_, D> {
     /// Index of pixel (x, y) in the band's buffers, if held (apron included).
     pub fn index(&self, x: u16, y: u16) -> Option<usize> {
         let row = y.checked_sub(self.first).filter(|r| *r < self.held)?;
@@ -241,6 +308,42 @@ impl<D> ZBand<'_, D> {
             .and_then(|i| self.ids.get(i))
             .copied()
             .unwrap_or(0)
+    }
+
+    /// The ids of row `y`, when held.
+    pub fn row_mut(&mut self, y: u16) -> Option<&mut [u16]> {
+        let start = self.index(0, y)?;
+        self.ids.get_mut(start..start + usize::from(self.width))
+    }
+
+    /// The ids of row `y`, empty when not held.
+    pub fn row(&self, y: u16) -> &[u16] {
+        self.index(0, y)
+            .and_then(|start| self.ids.get(start..start + usize::from(self.width)))
+            .unwrap_or(&[])
+    }
+}
+
+/// Depth and face ids of one band of rows (see [`IdBand`] for the apron). Faces'
+/// spans go in through [`FaceSpans`].
+#[derive(Debug)]
+pub(crate) struct ZBand<'s, D> {
+    pub depth: &'s mut [D],
+    pub ids: IdBand<'s>,
+}
+
+impl<D: Depth> ZBand<'_, D> {
+    /// Starts the band of rows `top .. top + rows` of a frame `height` high: no face
+    /// anywhere. Depth is left as it is: a pixel without a face takes any face's
+    /// depth (see [`FaceSpans`]).
+    pub fn reset(&mut self, top: u16, rows: u16, height: u16) {
+        // Every held row is cleared: the depth of earlier rows is gone.
+        self.ids.held = 0;
+        self.ids.advance(top, rows, height);
+        let n = usize::from(self.ids.width) * usize::from(self.ids.held);
+        if let Some(ids) = self.ids.ids.get_mut(..n) {
+            ids.fill(0);
+        }
     }
 }
 
@@ -266,7 +369,7 @@ impl<D: Depth> SpanSink for FaceSpans<'_, '_, D> {
 
     fn fill_span(&mut self, span: Span, _: BinaryColor) -> Result<(), Infallible> {
         self.spans += 1;
-        let Some(start) = self.band.index(span.x0(), span.y()) else {
+        let Some(start) = self.band.ids.index(span.x0(), span.y()) else {
             return Ok(());
         };
         let len = usize::from(span.len());
@@ -276,7 +379,7 @@ impl<D: Depth> SpanSink for FaceSpans<'_, '_, D> {
         let mut acc = self.plane.at_pixel(span.x0(), span.y());
         let (Some(depth), Some(ids)) = (
             self.band.depth.get_mut(start..start + len),
-            self.band.ids.get_mut(start..start + len),
+            self.band.ids.ids.get_mut(start..start + len),
         ) else {
             return Ok(());
         };

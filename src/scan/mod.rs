@@ -6,7 +6,7 @@
 //! watertight. Every decision is integer arithmetic on the snapped vertices; see
 //! [`edge`](self) for the DDA and the bounds that keep it from overflowing.
 
-mod edge;
+pub(crate) mod edge;
 mod walk;
 
 use embedded_graphics_core::pixelcolor::PixelColor;

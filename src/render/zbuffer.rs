@@ -1,0 +1,224 @@
+//! The Z-buffer engine of paper 000, in bands of rows.
+//!
+//! Per band: depth-test the faces that reach the band (each face's edges are set up
+//! at the band's first row), then the shared line pass and composition.
+
+use core::marker::PhantomData;
+use core::mem::size_of;
+
+use embedded_graphics_core::pixelcolor::{BinaryColor, PixelColor};
+use fixed::types::extra::LeEqU32;
+use heapless::Vec;
+
+use super::compose::{self, FrameProbe, Palette};
+use super::lines::{line_pass, LineMasks};
+use super::transform::{ProjectedVertex, ScreenVertex};
+use super::zband::{Depth, DepthPlane, FaceSpans, IdBand, ZBand};
+use super::{begin_frame, bit, face_polygon, need, FrameCtx, Settings, Stats, Workspace};
+use crate::camera::Camera;
+use crate::geometry::Subpixel;
+use crate::mesh::{EdgeAdjacency, Mesh};
+use crate::{Error, FillRule, ScanConverter, ScreenPoint, SpanSink};
+
+/// The Z-buffer + P-buffer renderer with S = `Frac` sub-pixel bits, room for
+/// `EDGES` polygon edges in the scan converter and `POLY` vertices per clipped face.
+#[derive(Debug)]
+pub struct ZBufferRenderer<Frac: LeEqU32, const EDGES: usize, const POLY: usize> {
+    scan: ScanConverter<EDGES>,
+    _frac: PhantomData<Frac>,
+}
+
+impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> Default
+    for ZBufferRenderer<Frac, EDGES, POLY>
+{
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac, EDGES, POLY> {
+    /// Empty working memory.
+    pub const fn new() -> Self {
+        Self {
+            scan: ScanConverter::new(),
+            _frac: PhantomData,
+        }
+    }
+
+    /// Renders `mesh` seen by `camera` into `sink`, whose viewport is the frame.
+    /// Colours come from `palette`; `probe` sees each finished row's face ids and line
+    /// masks (for the `--ids` and `--lines` outputs; `&mut ()` ignores them).
+    #[allow(clippy::too_many_arguments)]
+    pub fn render<D: Depth, K: SpanSink, P: Palette<Color = K::Color>, R: FrameProbe>(
+        &mut self,
+        mesh: &Mesh<'_>,
+        edges: &EdgeAdjacency<'_>,
+        camera: &Camera,
+        settings: &Settings,
+        ws: &mut Workspace<'_, D>,
+        palette: &P,
+        sink: &mut K,
+        probe: &mut R,
+    ) -> Result<Stats, Error<K::Error>>
+    where
+        K::Color: PixelColor,
+    {
+        let viewport = sink.viewport();
+        let (width, height) = (viewport.width, viewport.height);
+        let s = Subpixel::<Frac>::BITS;
+        let row_words = usize::from(width).div_ceil(32);
+        let w = usize::from(width).max(1);
+        // Storage rows: the band's own rows plus a one-row apron above and below,
+        // unless one band holds the whole frame.
+        let stored = (ws.depth.len().min(ws.ids.len()) / w).min(usize::from(u16::MAX)) as u16;
+        let band_rows = if stored >= height {
+            height
+        } else {
+            stored.saturating_sub(2)
+        }
+        .min((ws.lines.len() / (2 * row_words).max(1)).min(usize::from(height)) as u16);
+        if height > 0 && band_rows == 0 {
+            let rows = usize::from(IdBand::rows_needed(1, height));
+            need(rows * w, ws.depth.len().min(ws.ids.len())).map_err(Error::widen)?;
+            need(2 * row_words, ws.lines.len()).map_err(Error::widen)?;
+        }
+        let mut stats = Stats {
+            band_rows: u32::from(band_rows),
+            depth_buffer_bytes: (usize::from(IdBand::rows_needed(band_rows, height))
+                * w
+                * size_of::<D>()) as u32,
+            ..Stats::default()
+        };
+        let ctx = begin_frame(
+            mesh,
+            edges,
+            camera,
+            settings,
+            viewport,
+            s,
+            ws.vertices,
+            ws.drawn,
+            ws.features,
+            &mut stats,
+        )
+        .map_err(Error::widen)?;
+        let Workspace {
+            vertices,
+            drawn,
+            features,
+            depth,
+            ids,
+            lines,
+        } = ws;
+        let mut band = ZBand {
+            depth,
+            ids: IdBand::new(ids, width),
+        };
+        let mut masks = LineMasks {
+            words: lines,
+            row_words,
+            rows: 0,
+        };
+        let mut top = 0u16;
+        while top < height && band_rows > 0 {
+            let rows = band_rows.min(height - top);
+            band.reset(top, rows, height);
+            masks.reset(rows);
+            stats.bands += 1;
+            if settings.mode.needs_depth() {
+                stats.spans += self.depth_pass(&ctx, vertices, drawn, &mut band)?;
+            }
+            if settings.mode.draws_lines() {
+                line_pass::<POLY>(
+                    &ctx, vertices, drawn, features, edges, settings, &band.ids, &mut masks,
+                );
+            }
+            stats.spans += compose::emit_band(
+                &ctx, settings, &band.ids, &masks, drawn, palette, sink, probe,
+            )
+            .map_err(Error::Target)?;
+            top += rows;
+        }
+        sink.flush().map_err(Error::Target)?;
+        Ok(stats)
+    }
+
+    /// Depth-tests every drawn face that reaches the band; returns the spans walked.
+    fn depth_pass<D: Depth, T>(
+        &mut self,
+        ctx: &FrameCtx<'_, '_>,
+        vertices: &[ProjectedVertex],
+        drawn: &[u32],
+        band: &mut ZBand<'_, D>,
+    ) -> Result<u32, Error<T>> {
+        let mut spans = 0;
+        // Faces are walked over the apron too: the line test looks there.
+        let (top, end) = (band.ids.first, band.ids.first + band.ids.held);
+        let h = 1i32 << ctx.s;
+        let reaches = |lo: i32, hi: i32| {
+            let (first, last) = ((lo - h) >> ctx.s, (hi + h) >> ctx.s);
+            last >= i32::from(top) && first < i32::from(end)
+        };
+        // Reused for every face: a heapless vector moved by value copies its capacity.
+        let mut poly: Vec<ScreenVertex, POLY> = Vec::new();
+        let mut points: Vec<ScreenPoint<Frac>, POLY> = Vec::new();
+        for f in 0..ctx.mesh.face_count() {
+            if !bit(drawn, f) {
+                continue;
+            }
+            // Rows the face can reach, from the vertex cache: most faces miss the band.
+            let (mut lo, mut hi, mut outside) = (i32::MAX, i32::MIN, 0u8);
+            for &v in ctx.mesh.face(f) {
+                let p = vertices
+                    .get(v as usize)
+                    .map_or(ProjectedVertex::default(), |p| *p);
+                lo = lo.min(p.screen.y);
+                hi = hi.max(p.screen.y);
+                outside |= p.outside;
+            }
+            if outside == 0 && !reaches(lo, hi) {
+                continue;
+            }
+            if !face_polygon(ctx, vertices, f, &mut poly).map_err(Error::widen)? {
+                continue;
+            }
+            if outside != 0 {
+                let (lo, hi) = poly.iter().fold((i32::MAX, i32::MIN), |(lo, hi), v| {
+                    (lo.min(v.y), hi.max(v.y))
+                });
+                if !reaches(lo, hi) {
+                    continue;
+                }
+            }
+            let Some(plane) = DepthPlane::new(&poly, ctx.s) else {
+                continue;
+            };
+            points.clear();
+            for v in &poly {
+                let _ = points.push(ScreenPoint::from_bits(v.x, v.y));
+            }
+            let mut sink = FaceSpans {
+                band: &mut *band,
+                plane,
+                id: (f + 1) as u16,
+                viewport: ctx.viewport,
+                spans: 0,
+            };
+            self.scan
+                .fill_rows(
+                    &points,
+                    FillRule::EvenOdd,
+                    top..end,
+                    BinaryColor::On,
+                    &mut sink,
+                )
+                .map_err(|e| match e {
+                    Error::Target(never) => match never {},
+                    other => other.widen(),
+                })?;
+            spans += sink.spans;
+        }
+        Ok(spans)
+    }
+}
+
