@@ -19,7 +19,8 @@ use crate::frame::{
 const EDGES: usize = 512;
 const POLY: usize = 512;
 /// Code-fill engine on the host: code words (32 bits each) and active edges.
-pub const CODE_WORDS: usize = 32;
+pub const CODE_WORDS: usize = 4;
+pub const ACTIVE_FACES: usize = 1024;
 pub const ACTIVE_EDGES: usize = 8192;
 
 /// A packed 1-bpp frame of any size (the `PackedFramebuffer` layout), as a span sink.
@@ -365,7 +366,7 @@ fn render_code<Frac: LeEqU32>(
         lines: &mut lines,
     };
     let lent = ws.bytes() + std::mem::size_of_val(adjacency.edges());
-    type Engine<F> = CodeFillRenderer<F, CODE_WORDS, ACTIVE_EDGES, POLY>;
+    type Engine<F> = CodeFillRenderer<F, CODE_WORDS, ACTIVE_FACES, ACTIVE_EDGES, POLY>;
     let mut renderer = Box::new(Engine::<Frac>::new());
     let mut target = PackedFrame::new(w, h);
     let mut probe = Collect {

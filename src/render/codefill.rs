@@ -1,15 +1,17 @@
 //! The code-fill engine of paper 003: visibility one row at a time, no depth buffer.
 //!
-//! Faces are taken in order of their first row. While a face is active it holds
-//! one bit of the row's surface code (a bit is reused once its face ends), and each
-//! of its edges crossing a row XORs that bit in at the crossing: the running XOR
-//! from the left is, at every pixel, the set of faces covering it (even-odd per
-//! face, so a face covers exactly the pixels the span core fills for it). A run of
-//! pixels covered by one face needs no depth at all. Where the code holds two or
-//! more faces, the scan-line method of notes 004 decides: their planes are compared
-//! at the run's ends and the run is split where one overtakes another. The result
-//! is the Z-buffer engine's picture with 32-bit depth (the nearest face at each
-//! pixel centre, ties to the lower face index) in memory that grows with a row.
+//! Faces become active at their first row (they are sorted by it) and their edges
+//! join one active edge list. On each row the crossings are taken left to right and
+//! each toggles its face in the row's surface code: a face entering takes the
+//! lowest free bit, a face leaving frees it. The running code is, at every pixel,
+//! the set of faces covering it (even-odd per face, so a face covers exactly the
+//! pixels the span core fills for it), and the code is only as wide as the most
+//! faces covering one pixel. A run of pixels covered by one face needs no depth at
+//! all. Where the code holds two or more faces, the scan-line method of notes 004
+//! decides: their planes are compared at the run's ends and the run is split where
+//! one overtakes another. The result is the Z-buffer engine's picture with 32-bit
+//! depth (the nearest face at each pixel centre, ties to the lower face index) in
+//! memory that grows with a row.
 
 use core::marker::PhantomData;
 
@@ -63,15 +65,21 @@ impl CodeWorkspace<'_> {
     }
 }
 
-/// A face holding a bit of the code.
+/// A face on the rows it covers.
 #[derive(Debug, Clone, Copy, Default)]
 struct ActiveFace {
     /// 1 + face index.
     id: u16,
+    /// Its bit in the current row's code while inside the face: [`NO_BIT`] when
+    /// outside, [`OVER`] when inside without a bit (the code is full).
+    bit: u16,
     /// The row after its last.
     end: i32,
     plane: RowPlane,
 }
+
+const NO_BIT: u16 = u16::MAX;
+const OVER: u16 = u16::MAX - 1;
 
 /// An edge of an active face.
 #[derive(Debug, Clone, Copy)]
@@ -79,38 +87,47 @@ struct ActiveEdge {
     edge: Edge,
     /// The crossing on the current row (`u16::MAX` before the edge's first row).
     x: u16,
-    /// The face's bit.
-    slot: u16,
+    /// Index of its face in the active face table.
+    face: u16,
 }
 
 /// The code-fill renderer with S = `Frac` sub-pixel bits, a surface code of
-/// `32 x WORDS` bits (the most faces active on one row), room for `EDGES` active
-/// edges and `POLY` vertices per clipped face.
+/// `32 x WORDS` bits (at least the most faces covering one pixel), room for
+/// `FACES` faces and `EDGES` edges active on one row, and `POLY` vertices per
+/// clipped face.
 #[derive(Debug)]
 pub struct CodeFillRenderer<
     Frac: LeEqU32,
     const WORDS: usize,
+    const FACES: usize,
     const EDGES: usize,
     const POLY: usize,
 > {
-    /// Active faces by bit: bit `k` is `faces[k / 32][k % 32]`.
-    faces: [[ActiveFace; 32]; WORDS],
-    /// Bits held by active faces.
-    used: [u32; WORDS],
-    active: usize,
+    /// Active face table; `live` indexes the entries in use, `free` the others.
+    faces: [ActiveFace; FACES],
+    live: Vec<u16, FACES>,
+    free: Vec<u16, FACES>,
     edges: Vec<ActiveEdge, EDGES>,
-    /// The running code of the current row.
+    /// The running code of the current row, and which face holds each bit.
     code: [u32; WORDS],
+    owner: [[u16; 32]; WORDS],
+    /// Faces inside at the current crossing (bits set, plus any beyond the code).
+    inside: usize,
     /// Next entry of the face order to activate, and the next row to scan.
     next_face: usize,
     row: u16,
-    /// The most faces active at once this frame.
+    /// The most faces covering one pixel this frame.
     widest: usize,
     _frac: PhantomData<Frac>,
 }
 
-impl<Frac: LeEqU32, const WORDS: usize, const EDGES: usize, const POLY: usize> Default
-    for CodeFillRenderer<Frac, WORDS, EDGES, POLY>
+impl<
+        Frac: LeEqU32,
+        const WORDS: usize,
+        const FACES: usize,
+        const EDGES: usize,
+        const POLY: usize,
+    > Default for CodeFillRenderer<Frac, WORDS, FACES, EDGES, POLY>
 {
     fn default() -> Self {
         Self::new()
@@ -119,12 +136,18 @@ impl<Frac: LeEqU32, const WORDS: usize, const EDGES: usize, const POLY: usize> D
 
 const NO_FACE: ActiveFace = ActiveFace {
     id: 0,
+    bit: NO_BIT,
     end: 0,
     plane: RowPlane::ZERO,
 };
 
-impl<Frac: LeEqU32, const WORDS: usize, const EDGES: usize, const POLY: usize>
-    CodeFillRenderer<Frac, WORDS, EDGES, POLY>
+impl<
+        Frac: LeEqU32,
+        const WORDS: usize,
+        const FACES: usize,
+        const EDGES: usize,
+        const POLY: usize,
+    > CodeFillRenderer<Frac, WORDS, FACES, EDGES, POLY>
 {
     /// Bits of the surface code.
     pub const CODE_BITS: usize = 32 * WORDS;
@@ -132,11 +155,13 @@ impl<Frac: LeEqU32, const WORDS: usize, const EDGES: usize, const POLY: usize>
     /// Empty working memory.
     pub const fn new() -> Self {
         Self {
-            faces: [[NO_FACE; 32]; WORDS],
-            used: [0; WORDS],
-            active: 0,
+            faces: [NO_FACE; FACES],
+            live: Vec::new(),
+            free: Vec::new(),
             edges: Vec::new(),
             code: [0; WORDS],
+            owner: [[0; 32]; WORDS],
+            inside: 0,
             next_face: 0,
             row: 0,
             widest: 0,
@@ -147,7 +172,8 @@ impl<Frac: LeEqU32, const WORDS: usize, const EDGES: usize, const POLY: usize>
     /// Renders `mesh` seen by `camera` into `sink`, whose viewport is the frame:
     /// the same frame as [`ZBufferRenderer`](super::ZBufferRenderer) with 32-bit
     /// depth. Fails with [`Error::CodeTooWide`] when more than [`Self::CODE_BITS`]
-    /// faces are active on one row (the row where that first happens says how many).
+    /// faces cover one pixel, with the width the whole frame needs (the target then
+    /// holds the bands drawn before; so after any error).
     #[allow(clippy::too_many_arguments)]
     pub fn render<K: SpanSink, P: Palette<Color = K::Color>, R: FrameProbe>(
         &mut self,
@@ -247,6 +273,12 @@ impl<Frac: LeEqU32, const WORDS: usize, const EDGES: usize, const POLY: usize>
             top += rows;
         }
         stats.code_bits = self.widest as u32;
+        if self.widest > Self::CODE_BITS {
+            return Err(Error::CodeTooWide {
+                needed: self.widest,
+                capacity: Self::CODE_BITS,
+            });
+        }
         sink.flush().map_err(Error::Target)?;
         Ok(stats)
     }
@@ -298,8 +330,11 @@ impl<Frac: LeEqU32, const WORDS: usize, const EDGES: usize, const POLY: usize>
 
     /// Forgets the last frame's active faces and edges.
     fn begin(&mut self) {
-        self.used = [0; WORDS];
-        self.active = 0;
+        self.live.clear();
+        self.free.clear();
+        for k in (0..FACES).rev() {
+            let _ = self.free.push(k as u16);
+        }
         self.edges.clear();
         self.next_face = 0;
         self.row = 0;
@@ -332,34 +367,70 @@ impl<Frac: LeEqU32, const WORDS: usize, const EDGES: usize, const POLY: usize>
         }
         insertion_sort_by_x(&mut self.edges);
         self.code = [0; WORDS];
-        let mut count = 0u32;
+        self.inside = 0;
         let (mut xa, mut runs) = (0u16, 0u32);
-        for i in 0..self.edges.len() {
-            let Some(&ActiveEdge { x, slot, .. }) = self.edges.get(i) else {
-                break;
-            };
+        let mut i = 0;
+        while let Some(&ActiveEdge { x, .. }) = self.edges.get(i) {
             if x > width {
                 break;
             }
             if x != xa {
-                runs += self.resolve(count, y, xa, x, out);
+                runs += self.resolve(xa, x, out);
                 xa = x;
             }
-            if let Some(word) = self.code.get_mut(usize::from(slot / 32)) {
-                let mask = 1 << (slot % 32);
-                *word ^= mask;
-                if *word & mask != 0 {
-                    count += 1;
-                } else {
-                    count -= 1;
+            let group = i..self.edges[i..].iter().take_while(|e| e.x == x).count() + i;
+            // Faces leaving first, so that one entering at the same place can take
+            // the bit: the code is then as wide as the most faces over one pixel.
+            for k in group.clone() {
+                let f = usize::from(self.edges[k].face);
+                if self.faces.get(f).is_some_and(|face| face.bit != NO_BIT) {
+                    self.toggle(f);
+                    self.edges[k].x = u16::MAX - 1;
                 }
             }
+            for k in group.clone() {
+                if self.edges[k].x == x {
+                    self.toggle(usize::from(self.edges[k].face));
+                }
+            }
+            i = group.end;
         }
         if xa < width {
-            runs += self.resolve(count, y, xa, width, out);
+            runs += self.resolve(xa, width, out);
         }
         self.step_row();
         Ok(runs)
+    }
+
+    /// Face `f` enters or leaves at the current crossing.
+    fn toggle(&mut self, f: usize) {
+        let Some(face) = self.faces.get_mut(f) else {
+            return;
+        };
+        if face.bit == NO_BIT {
+            let free = self
+                .code
+                .iter()
+                .enumerate()
+                .find(|(_, w)| **w != u32::MAX)
+                .map(|(k, w)| (k, w.trailing_ones() as usize));
+            face.bit = match free {
+                Some((k, b)) => {
+                    self.code[k] |= 1 << b;
+                    self.owner[k][b] = f as u16;
+                    (32 * k + b) as u16
+                }
+                None => OVER,
+            };
+            self.inside += 1;
+            self.widest = self.widest.max(self.inside);
+        } else {
+            if let Some(word) = self.code.get_mut(usize::from(face.bit / 32)) {
+                *word &= !(1 << (face.bit % 32));
+            }
+            face.bit = NO_BIT;
+            self.inside -= 1;
+        }
     }
 
     /// Moves every active edge and face past the current row, dropping those that
@@ -372,25 +443,26 @@ impl<Frac: LeEqU32, const WORDS: usize, const EDGES: usize, const POLY: usize>
             }
         }
         self.edges.retain(|e| e.edge.end > next);
-        for (faces, used) in self.faces.iter_mut().zip(self.used.iter_mut()) {
-            let mut bits = *used;
-            while bits != 0 {
-                let b = bits.trailing_zeros() as usize;
-                bits &= bits - 1;
-                let Some(face) = faces.get_mut(b) else { continue };
-                if face.end <= next {
-                    *used &= !(1 << b);
-                    self.active -= 1;
-                } else {
-                    face.plane.step();
-                }
+        let mut k = 0;
+        while let Some(&f) = self.live.get(k) {
+            let Some(face) = self.faces.get_mut(usize::from(f)) else {
+                break;
+            };
+            // A face cut by the frame's right side can end a row inside.
+            face.bit = NO_BIT;
+            if face.end <= next {
+                self.live.swap_remove(k);
+                let _ = self.free.push(f);
+            } else {
+                face.plane.step();
+                k += 1;
             }
         }
         self.row += 1;
     }
 
-    /// Activates the faces whose first row is `y`: each takes the lowest free bit,
-    /// and its edges join the active edges.
+    /// Activates the faces whose first row is `y`: their edges join the active
+    /// edges.
     fn activate(
         &mut self,
         ctx: &FrameCtx<'_, '_>,
@@ -411,16 +483,12 @@ impl<Frac: LeEqU32, const WORDS: usize, const EDGES: usize, const POLY: usize>
             let Some(plane) = DepthPlane::new(&poly, ctx.s) else {
                 continue;
             };
-            let slot = self
-                .used
-                .iter()
-                .enumerate()
-                .find(|(_, w)| **w != u32::MAX)
-                .map(|(k, w)| 32 * k + w.trailing_ones() as usize)
-                .ok_or(Error::CodeTooWide {
-                    needed: self.active + 1,
-                    capacity: Self::CODE_BITS,
-                })?;
+            let Some(&slot) = self.free.last() else {
+                return Err(Error::CapacityExceeded {
+                    needed: self.live.len() + 1,
+                    capacity: FACES,
+                });
+            };
             let rows = RowRange {
                 first: i32::from(y),
                 end: i32::from(ctx.viewport.height),
@@ -440,7 +508,7 @@ impl<Frac: LeEqU32, const WORDS: usize, const EDGES: usize, const POLY: usize>
                 let active = ActiveEdge {
                     edge,
                     x: u16::MAX,
-                    slot: slot as u16,
+                    face: slot,
                 };
                 if self.edges.push(active).is_err() {
                     return Err(Error::CapacityExceeded {
@@ -453,53 +521,54 @@ impl<Frac: LeEqU32, const WORDS: usize, const EDGES: usize, const POLY: usize>
             if added == 0 {
                 continue;
             }
-            if let (Some(word), Some(face)) = (
-                self.used.get_mut(slot / 32),
-                self.faces.get_mut(slot / 32).and_then(|w| w.get_mut(slot % 32)),
-            ) {
-                *word |= 1 << (slot % 32);
+            if let Some(face) = self.faces.get_mut(usize::from(slot)) {
                 *face = ActiveFace {
                     id: (f + 1) as u16,
+                    bit: NO_BIT,
                     end,
                     plane: plane.row_plane(y),
                 };
             }
-            self.active += 1;
-            self.widest = self.widest.max(self.active);
+            self.free.pop();
+            let _ = self.live.push(slot);
         }
         Ok(())
     }
 
-    /// The face holding bit `slot`.
-    fn face(&self, slot: usize) -> ActiveFace {
-        self.faces
-            .get(slot / 32)
-            .and_then(|w| w.get(slot % 32))
+    /// The face holding code bit `bit`.
+    fn owner(&self, bit: usize) -> &ActiveFace {
+        let f = self
+            .owner
+            .get(bit / 32)
+            .and_then(|w| w.get(bit % 32))
             .copied()
-            .unwrap_or(NO_FACE)
+            .unwrap_or(0);
+        self.faces.get(usize::from(f)).unwrap_or(&NO_FACE)
     }
 
-    /// Writes the ids of pixels `xa .. xb` of the current row, where the code holds
-    /// `count` faces; returns the runs written.
-    fn resolve(&self, count: u32, _y: u16, xa: u16, xb: u16, out: &mut [u16]) -> u32 {
+    /// Writes the ids of pixels `xa .. xb` of the current row from the code;
+    /// returns the runs written.
+    fn resolve(&self, xa: u16, xb: u16, out: &mut [u16]) -> u32 {
         let Some(run) = out.get_mut(usize::from(xa)..usize::from(xb)) else {
             return 0;
         };
-        match count {
+        match self.inside {
             0 => {
                 run.fill(0);
                 1
             }
             1 => {
-                let slot = self
+                let bit = self
                     .code
                     .iter()
                     .enumerate()
                     .find(|(_, w)| **w != 0)
                     .map_or(0, |(k, w)| 32 * k + w.trailing_zeros() as usize);
-                run.fill(self.face(slot).id);
+                run.fill(self.owner(bit).id);
                 1
             }
+            // Faces beyond the code: the frame fails with the width it needs.
+            n if n > Self::CODE_BITS => 0,
             _ => self.resolve_overlap(xa, xb, out),
         }
     }
@@ -548,14 +617,12 @@ impl<Frac: LeEqU32, const WORDS: usize, const EDGES: usize, const POLY: usize>
 
     /// Calls `f` on each face whose bit is set in the code.
     fn each_covering(&self, mut f: impl FnMut(&ActiveFace)) {
-        for (faces, &word) in self.faces.iter().zip(self.code.iter()) {
+        for (k, &word) in self.code.iter().enumerate() {
             let mut bits = word;
             while bits != 0 {
                 let b = bits.trailing_zeros() as usize;
                 bits &= bits - 1;
-                if let Some(face) = faces.get(b) {
-                    f(face);
-                }
+                f(self.owner(32 * k + b));
             }
         }
     }
