@@ -18,9 +18,9 @@ use crate::frame::{
 /// Scan-converter edge capacity and clipped-polygon capacity used on the host.
 const EDGES: usize = 512;
 const POLY: usize = 512;
-/// Code-fill engine on the host: code words (32 bits each) and active edges.
-pub const CODE_WORDS: usize = 4;
-pub const ACTIVE_FACES: usize = 1024;
+/// Code-fill engine on the host: active faces and edges. The code is 128 bits (4
+/// words), as on firmware; a frame that needs more is rendered again with 1024.
+pub const ACTIVE_FACES: usize = 2048;
 pub const ACTIVE_EDGES: usize = 8192;
 
 /// A packed 1-bpp frame of any size (the `PackedFramebuffer` layout), as a span sink.
@@ -227,7 +227,10 @@ fn render_s<Frac: LeEqU32>(
     spec: &RenderSpec,
 ) -> Result<Frame, String> {
     if spec.engine == EngineSpec::CodeFill {
-        return render_code::<Frac>(mesh, cam, spec);
+        return match render_code::<Frac, 4>(mesh, cam, spec) {
+            Err(e) if e.contains("surface code") => render_code::<Frac, 32>(mesh, cam, spec),
+            other => other,
+        };
     }
     match spec.depth_bits {
         16 => render_sd::<Frac, u16>(mesh, cam, spec),
@@ -293,7 +296,16 @@ fn render_sd<Frac: LeEqU32, D: Depth>(
         .map_err(|e| format!("render: {e}"))?;
     let time_us = start.elapsed().as_micros() as u64;
     let working = lent + std::mem::size_of::<ZBufferRenderer<Frac, EDGES, POLY>>();
-    Ok(frame(w, h, probe, target, &stats, working, build_bytes, time_us))
+    Ok(frame(
+        w,
+        h,
+        probe,
+        target,
+        &stats,
+        working,
+        build_bytes,
+        time_us,
+    ))
 }
 
 /// The frame and its `--stats` figures.
@@ -326,6 +338,8 @@ fn frame(
                 u64::from(stats.depth_buffer_bytes),
             ),
             ("code_bits".into(), u64::from(stats.code_bits)),
+            ("peak_active_faces".into(), u64::from(stats.peak_faces)),
+            ("peak_active_edges".into(), u64::from(stats.peak_edges)),
             ("working_ram_bytes".into(), working as u64),
             ("adjacency_build_bytes".into(), build_bytes as u64),
             ("time_us".into(), time_us),
@@ -334,7 +348,7 @@ fn frame(
 }
 
 /// The code-fill engine: no depth buffer; ids for the band and its apron.
-fn render_code<Frac: LeEqU32>(
+fn render_code<Frac: LeEqU32, const WORDS: usize>(
     data: &MeshData,
     cam: &CameraSpec,
     spec: &RenderSpec,
@@ -366,8 +380,8 @@ fn render_code<Frac: LeEqU32>(
         lines: &mut lines,
     };
     let lent = ws.bytes() + std::mem::size_of_val(adjacency.edges());
-    type Engine<F> = CodeFillRenderer<F, CODE_WORDS, ACTIVE_FACES, ACTIVE_EDGES, POLY>;
-    let mut renderer = Box::new(Engine::<Frac>::new());
+    type Engine<F, const W: usize> = CodeFillRenderer<F, W, ACTIVE_FACES, ACTIVE_EDGES, POLY>;
+    let mut renderer = Box::new(Engine::<Frac, WORDS>::new());
     let mut target = PackedFrame::new(w, h);
     let mut probe = Collect {
         width: w,
@@ -388,6 +402,18 @@ fn render_code<Frac: LeEqU32>(
         )
         .map_err(|e| format!("render: {e}"))?;
     let time_us = start.elapsed().as_micros() as u64;
-    let working = lent + std::mem::size_of::<Engine<Frac>>();
-    Ok(frame(w, h, probe, target, &stats, working, build_bytes, time_us))
+    // The engine this frame needed: its peak active faces and edges, not the host's
+    // capacities.
+    let working = lent
+        + Engine::<Frac, WORDS>::bytes_for(stats.peak_faces as usize, stats.peak_edges as usize);
+    Ok(frame(
+        w,
+        h,
+        probe,
+        target,
+        &stats,
+        working,
+        build_bytes,
+        time_us,
+    ))
 }

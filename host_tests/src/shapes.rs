@@ -44,6 +44,14 @@ pub fn all_scenes() -> Vec<Scene> {
             name: "frame",
             mesh: frame(),
         },
+        Scene {
+            name: "cyclic",
+            mesh: cyclic_sticks(),
+        },
+        Scene {
+            name: "coplanar",
+            mesh: coplanar_boxes(),
+        },
     ]
 }
 
@@ -154,6 +162,37 @@ pub fn boxes() -> MeshData {
     add_box(&mut m, [1.2, 0.1, -0.9], [0.7, 1.1, 0.6], -0.3, 0.0); // behind
     add_box(&mut m, [0.9, -0.55, 1.1], [0.35, 0.3, 0.35], 0.9, 0.35);
     add_box(&mut m, [-1.5, 0.2, -1.3], [0.45, 0.95, 0.45], 0.2, 0.0);
+    m
+}
+
+/// Three sticks (flat quads, both sides seen) that overlap cyclically when seen
+/// from +z: each lies over the next and under the previous, so no order of the
+/// three faces is right everywhere.
+pub fn cyclic_sticks() -> MeshData {
+    let mut m = MeshData::default();
+    for k in 0..3 {
+        let a = k as f64 * std::f64::consts::TAU / 3.0;
+        let (s, c) = a.sin_cos();
+        let rot = |x: f64, y: f64| [c * x - s * y, s * x + c * y];
+        let base = m.vertices.len() as u32;
+        // Along x from -1.4 to 1.4, 0.35 off the centre, falling 0.5 in z.
+        for (x, y) in [(-1.4, -0.55), (1.4, -0.55), (1.4, -0.2), (-1.4, -0.2)] {
+            let [px, py] = rot(x, y);
+            m.vertices.push([px, py, -0.18 * x]);
+        }
+        m.faces.push((base..base + 4).collect());
+    }
+    m
+}
+
+/// Two boxes side by side whose top faces lie in one plane and overlap, on a
+/// slab whose top is coplanar with neither: coplanar faces need a deterministic
+/// winner (the lower face index, CONVENTIONS.md).
+pub fn coplanar_boxes() -> MeshData {
+    let mut m = MeshData::default();
+    add_box(&mut m, [0.0, -1.1, 0.0], [1.6, 0.1, 1.4], 0.0, 0.0);
+    add_box(&mut m, [-0.35, -0.4, 0.0], [0.6, 0.6, 0.6], 0.0, 0.0);
+    add_box(&mut m, [0.35, -0.4, 0.3], [0.6, 0.6, 0.5], 0.0, 0.0);
     m
 }
 

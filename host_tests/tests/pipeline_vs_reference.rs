@@ -1,16 +1,17 @@
-//! The library's 3-D pipeline (`host_tests::pipeline::render_frame`: fixed point, banded
-//! Z-buffer + P-buffer) against the independent f64 reference (`reference3d`), by the
-//! metrics of `host_tests::metrics`: surfaces (ids, mode `surfaces`) must have no holes,
-//! no wrong faces, no depth-order errors and no face-id differences away from edges;
-//! lines (mode `dashed`) must stay within the misclassified / missing limits. Each scene
-//! runs at one full-frame band with 32-bit depth and in 8-row bands with 16-bit depth.
+//! The library's 3-D pipeline (`host_tests::pipeline::render_frame`: fixed point, both
+//! engines) against the independent f64 reference (`reference3d`), by the metrics of
+//! `host_tests::metrics`: surfaces (ids, mode `surfaces`) must have no holes, no wrong
+//! faces, no depth-order errors and no face-id differences away from edges; lines
+//! (mode `dashed`) must stay within the misclassified / missing limits. Each scene runs
+//! with the code-fill engine (full frame, and 8-row bands) and the Z-buffer engine (a
+//! full-frame band with 32-bit depth, and 8-row bands with 16-bit depth).
 //! One report line per scene: `cargo test --release -p host_tests --test
 //! pipeline_vs_reference -- --nocapture`.
 
 use std::path::PathBuf;
 use std::time::Instant;
 
-use host_tests::frame::{CameraSpec, MeshData, ModeSpec, RenderSpec};
+use host_tests::frame::{CameraSpec, EngineSpec, MeshData, ModeSpec, RenderSpec};
 use host_tests::metrics::{compare, SceneMetrics};
 use host_tests::pipeline::render_frame;
 use host_tests::reference3d::reference_frame;
@@ -44,20 +45,34 @@ fn run_scene(
     };
     let ref_ms = t.elapsed().as_secs_f64() * 1e3;
     for mode in [ModeSpec::Surfaces, ModeSpec::Dashed] {
-        // One full-frame band with 32-bit depth, and 8-row bands with 16-bit depth.
-        for (band, depth_bits) in [(height, 32), (8, 16)] {
+        for (engine, band, depth_bits) in [
+            (EngineSpec::CodeFill, height, 32),
+            (EngineSpec::CodeFill, 8, 32),
+            (EngineSpec::ZBuffer, height, 32),
+            (EngineSpec::ZBuffer, 8, 16),
+        ] {
             let spec = RenderSpec {
+                engine,
                 mode,
                 band,
                 depth_bits,
                 ..base.clone()
             };
             let label = format!(
-                "{name} {width}x{height} {} band {band} depth {depth_bits}",
+                "{name} {width}x{height} {} {} band {band}{}",
                 if mode == ModeSpec::Surfaces {
                     "surf"
                 } else {
                     "dash"
+                },
+                match engine {
+                    EngineSpec::CodeFill => "codefill",
+                    EngineSpec::ZBuffer => "zbuffer",
+                },
+                if engine == EngineSpec::ZBuffer {
+                    format!(" depth {depth_bits}")
+                } else {
+                    String::new()
                 }
             );
             let t = Instant::now();

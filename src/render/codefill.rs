@@ -116,8 +116,10 @@ pub struct CodeFillRenderer<
     /// Next entry of the face order to activate, and the next row to scan.
     next_face: usize,
     row: u16,
-    /// The most faces covering one pixel this frame.
+    /// The most faces covering one pixel, and active on one row, this frame.
     widest: usize,
+    peak_faces: usize,
+    peak_edges: usize,
     _frac: PhantomData<Frac>,
 }
 
@@ -152,6 +154,17 @@ impl<
     /// Bits of the surface code.
     pub const CODE_BITS: usize = 32 * WORDS;
 
+    /// Bytes of an engine with this code width and room for `faces` active faces
+    /// and `edges` active edges (with `stats.peak_faces` and `stats.peak_edges`:
+    /// the engine a frame needed).
+    pub const fn bytes_for(faces: usize, edges: usize) -> usize {
+        use core::mem::size_of;
+        faces * (size_of::<ActiveFace>() + 2 * size_of::<u16>())
+            + edges * size_of::<ActiveEdge>()
+            + WORDS * (size_of::<u32>() + 32 * size_of::<u16>())
+            + 4 * size_of::<usize>()
+    }
+
     /// Empty working memory.
     pub const fn new() -> Self {
         Self {
@@ -165,6 +178,8 @@ impl<
             next_face: 0,
             row: 0,
             widest: 0,
+            peak_faces: 0,
+            peak_edges: 0,
             _frac: PhantomData,
         }
     }
@@ -266,13 +281,14 @@ impl<
                     &ctx, vertices, drawn, features, edges, settings, &band, &mut masks,
                 );
             }
-            stats.spans += compose::emit_band(
-                &ctx, settings, &band, &masks, drawn, palette, sink, probe,
-            )
-            .map_err(Error::Target)?;
+            stats.spans +=
+                compose::emit_band(&ctx, settings, &band, &masks, drawn, palette, sink, probe)
+                    .map_err(Error::Target)?;
             top += rows;
         }
         stats.code_bits = self.widest as u32;
+        stats.peak_faces = self.peak_faces as u32;
+        stats.peak_edges = self.peak_edges as u32;
         if self.widest > Self::CODE_BITS {
             return Err(Error::CodeTooWide {
                 needed: self.widest,
@@ -339,6 +355,8 @@ impl<
         self.next_face = 0;
         self.row = 0;
         self.widest = 0;
+        self.peak_faces = 0;
+        self.peak_edges = 0;
     }
 
     /// Fills `out` with the face ids of row `y` (rows come in order); returns the
@@ -357,6 +375,8 @@ impl<
             self.step_row();
         }
         self.activate(ctx, vertices, order, y)?;
+        self.peak_faces = self.peak_faces.max(self.live.len());
+        self.peak_edges = self.peak_edges.max(self.edges.len());
         let width = out.len() as u16;
         for e in self.edges.iter_mut() {
             e.x = if e.edge.first > i32::from(y) {
@@ -573,41 +593,55 @@ impl<
         }
     }
 
-    /// The scan-line method on a run covered by two or more faces: the nearest at
-    /// the run's start wins until another overtakes it (found by bisection: two
-    /// planes along a row cross at most once).
+    /// The scan-line method on a run covered by two or more faces. At a pixel the
+    /// faces are taken in index order, as the Z-buffer receives them: a later face
+    /// wins when nearer by more than a tie. The winner at the run's start holds
+    /// until the winner changes, found by bisection (two planes along a row cross
+    /// at most once).
     fn resolve_overlap(&self, xa: u16, xb: u16, out: &mut [u16]) -> u32 {
-        let beats = |c: &ActiveFace, w: &ActiveFace, x: u16| {
-            let (qc, qw) = (c.plane.at(x), w.plane.at(x));
-            qc > qw || (qc == qw && c.id < w.id)
+        let mut faces = [[&NO_FACE; 32]; WORDS];
+        let mut n = 0;
+        self.each_covering(|face| {
+            // Insertion by index: a few faces.
+            let mut i = n;
+            while i > 0 && faces[(i - 1) / 32][(i - 1) % 32].id > face.id {
+                faces[i / 32][i % 32] = faces[(i - 1) / 32][(i - 1) % 32];
+                i -= 1;
+            }
+            faces[i / 32][i % 32] = face;
+            n += 1;
+        });
+        let winner = |x: u16| {
+            let mut best = faces[0][0];
+            let mut q = best.plane.at(x);
+            for face in faces.iter().flatten().take(n).skip(1) {
+                let qf = face.plane.at(x);
+                if qf > q.saturating_add(face.plane.tie) {
+                    (best, q) = (face, qf);
+                }
+            }
+            best.id
         };
         let mut runs = 0;
         let mut x = xa;
         while x < xb {
-            let mut winner = NO_FACE;
-            self.each_covering(|face| {
-                if winner.id == 0 || beats(face, &winner, x) {
-                    winner = *face;
-                }
-            });
+            let id = winner(x);
             let last = xb - 1;
             let mut end = xb;
-            self.each_covering(|face| {
-                if face.id != winner.id && last > x && beats(face, &winner, last) {
-                    let (mut lo, mut hi) = (x, last);
-                    while hi - lo > 1 {
-                        let mid = lo + (hi - lo) / 2;
-                        if beats(face, &winner, mid) {
-                            hi = mid;
-                        } else {
-                            lo = mid;
-                        }
+            if last > x && winner(last) != id {
+                let (mut lo, mut hi) = (x, last);
+                while hi - lo > 1 {
+                    let mid = lo + (hi - lo) / 2;
+                    if winner(mid) == id {
+                        lo = mid;
+                    } else {
+                        hi = mid;
                     }
-                    end = end.min(hi);
                 }
-            });
+                end = hi;
+            }
             if let Some(run) = out.get_mut(usize::from(x)..usize::from(end)) {
-                run.fill(winner.id);
+                run.fill(id);
             }
             runs += 1;
             x = end;
@@ -616,7 +650,7 @@ impl<
     }
 
     /// Calls `f` on each face whose bit is set in the code.
-    fn each_covering(&self, mut f: impl FnMut(&ActiveFace)) {
+    fn each_covering<'a>(&'a self, mut f: impl FnMut(&'a ActiveFace)) {
         for (k, &word) in self.code.iter().enumerate() {
             let mut bits = word;
             while bits != 0 {

@@ -404,4 +404,3 @@ fn touches(mesh: &Mesh<'_>, edge: &MeshEdge, f: usize) -> bool {
     let ends = [key(edge.a), key(edge.b)];
     mesh.face(f).iter().any(|&v| ends.contains(&key(v)))
 }
-

@@ -143,8 +143,12 @@ pub struct Stats {
     /// Bytes of depth samples per band (0 for the code-fill engine).
     pub depth_buffer_bytes: u32,
     /// Code-fill engine: bits of the widest surface code a row needed (the most
-    /// surfaces active on one row).
+    /// faces covering one pixel).
     pub code_bits: u32,
+    /// Code-fill engine: the most faces active on one row.
+    pub peak_faces: u32,
+    /// Code-fill engine: the most edges active on one row.
+    pub peak_edges: u32,
 }
 
 /// Set a bit in a bitset.
@@ -177,7 +181,6 @@ struct FrameCtx<'f, 'm> {
     viewport: Viewport,
     viewpoint: Viewpoint,
 }
-
 
 /// The shared start of a frame: checks the lent per-frame storage, transforms every
 /// vertex, marks the drawn faces and this view's feature edges, and counts them in
@@ -290,7 +293,6 @@ fn face_polygon<const POLY: usize>(
     }
     Ok(out.len() >= 3)
 }
-
 
 impl Viewpoint {
     /// Unit direction from a point toward the eye (for shading).

@@ -42,6 +42,10 @@ impl Depth for u32 {
 /// Fraction bits of the per-pixel depth step.
 const STEP_BITS: u32 = 16;
 
+/// Units of `2^-31` nearness that the projection's rounding may put between two
+/// faces through the same points.
+const TIE_ROUNDING: u32 = 8;
+
 /// The nearness plane of one face in screen space, in half sub-pixel units
 /// (`2^-(S+1)` px): `q(X, Y) = q0 + (a (X - x0) + b (Y - y0)) / den`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -169,6 +173,15 @@ impl DepthPlane {
         q.clamp(-(1 << 40), 1 << 40) as i64
     }
 
+    /// Depth difference within which this face and an earlier one tie (the earlier,
+    /// lower index wins, CONVENTIONS.md): the uncertainty of a plane through vertices
+    /// snapped to the sub-pixel grid (1/32 px at each vertex, for each of two faces),
+    /// a sixteenth of a pixel's depth change, plus the
+    /// rounding of the vertices' nearness. Exactly coplanar faces then tie.
+    pub fn tie(&self) -> u32 {
+        (self.change_per_pixel() >> 4).saturating_add(TIE_ROUNDING)
+    }
+
     /// How much the nearness changes over one pixel (the L1 norm of the gradient).
     pub fn change_per_pixel(&self) -> u32 {
         let sum = (self.dq_dx.unsigned_abs() + self.dq_dy.unsigned_abs()) >> STEP_BITS;
@@ -190,6 +203,8 @@ impl DepthPlane {
 /// `dq_dy`: the same values [`FaceSpans`] steps to, without a depth buffer.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub(crate) struct RowPlane {
+    /// See [`DepthPlane::tie`].
+    pub tie: u32,
     row_q: i64,
     dq_dx: i64,
     dq_dy: i64,
@@ -200,6 +215,7 @@ pub(crate) struct RowPlane {
 impl RowPlane {
     /// Nearness 0 everywhere.
     pub const ZERO: Self = Self {
+        tie: 0,
         row_q: 0,
         dq_dx: 0,
         dq_dy: 0,
@@ -212,7 +228,9 @@ impl RowPlane {
     pub fn at(&self, x: u16) -> u32 {
         // No wrap can happen: |dq_dx| <= 2^47, x < 2^13 and |row_q| < 2^62 (see
         // `DepthPlane::new`); wrapping ops only spare the overflow checks.
-        let q = self.row_q.wrapping_add(self.dq_dx.wrapping_mul(i64::from(x)));
+        let q = self
+            .row_q
+            .wrapping_add(self.dq_dx.wrapping_mul(i64::from(x)));
         (q.clamp(self.q_min, self.q_max) >> STEP_BITS) as u32
     }
 
@@ -227,6 +245,7 @@ impl DepthPlane {
     /// The plane along row `y`.
     pub fn row_plane(&self, y: u16) -> RowPlane {
         RowPlane {
+            tie: self.tie(),
             row_q: self.at_pixel(0, y),
             dq_dx: self.dq_dx,
             dq_dy: self.dq_dy,
@@ -375,6 +394,7 @@ impl<D: Depth> SpanSink for FaceSpans<'_, '_, D> {
         let len = usize::from(span.len());
         let step = self.plane.dq_dx;
         let (q_min, q_max) = (self.plane.q_min, self.plane.q_max);
+        let tie = self.plane.tie();
         // Evaluated at the span's first pixel centre, then one add a pixel.
         let mut acc = self.plane.at_pixel(span.x0(), span.y());
         let (Some(depth), Some(ids)) = (
@@ -385,9 +405,9 @@ impl<D: Depth> SpanSink for FaceSpans<'_, '_, D> {
         };
         for (d, id) in depth.iter_mut().zip(ids.iter_mut()) {
             let q = D::from_q((acc.clamp(q_min, q_max) >> STEP_BITS) as u32);
-            // Strictly nearer wins; on equal depth the earlier (lower) face stays.
+            // Nearer by more than a tie wins; on a tie the earlier (lower) face stays.
             // An empty pixel (id 0) takes any face, so depth needs no clearing.
-            if *id == 0 || q > *d {
+            if *id == 0 || q.to_q() > d.to_q().saturating_add(tie) {
                 *d = q;
                 *id = self.id;
             }

@@ -221,4 +221,3 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
         Ok(spans)
     }
 }
-
