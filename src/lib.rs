@@ -26,6 +26,7 @@
 
 pub mod camera;
 pub mod codefill;
+pub mod codes;
 mod error;
 mod framebuffer;
 mod geometry;
