@@ -42,13 +42,6 @@ impl<'a, const W: usize> PathScheme<'a, W> {
     ) -> Result<Self, Error> {
         check_counts(&graph, node_data, path_codes)?;
         let span = node_span::<W>(hamming, node_data)?;
-        let codeword = |s: u16| node_data.get(usize::from(s)).map(|&d| hamming.encode(d));
-        for (path, surfaces) in graph.paths().iter().enumerate() {
-            let words = surfaces.iter().filter_map(|&s| codeword(s)?.ok());
-            if !independent::<W>(words)? {
-                return Err(Error::Scheme(SchemeViolation::PathDependent { path }));
-            }
-        }
         if let Some(&wide) = path_codes
             .iter()
             .find(|&&p| bit_length(p) > hamming.length())
@@ -57,6 +50,13 @@ impl<'a, const W: usize> PathScheme<'a, W> {
                 needed: bit_length(wide) as usize,
                 capacity: hamming.length() as usize,
             });
+        }
+        let codeword = |s: u16| node_data.get(usize::from(s)).map(|&d| hamming.encode(d));
+        for (path, surfaces) in graph.paths().iter().enumerate() {
+            let words = surfaces.iter().filter_map(|&s| codeword(s)?.ok());
+            if !independent::<W>(words)? {
+                return Err(Error::Scheme(SchemeViolation::PathDependent { path }));
+            }
         }
         for (first, &p) in path_codes.iter().enumerate() {
             for (second, &q) in path_codes.iter().enumerate().skip(first + 1) {
