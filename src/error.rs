@@ -75,6 +75,8 @@ pub enum Error<T = Infallible> {
         /// Bits compiled in.
         capacity: usize,
     },
+    /// Surface codes break a condition of their coding scheme (paper 003).
+    Scheme(crate::codes::SchemeViolation),
     /// The span sink or draw target failed.
     Target(T),
 }
@@ -119,6 +121,7 @@ impl Error<Infallible> {
             Error::TooManyFaces { faces, max } => Error::TooManyFaces { faces, max },
             Error::BadCamera(p) => Error::BadCamera(p),
             Error::CodeTooWide { needed, capacity } => Error::CodeTooWide { needed, capacity },
+            Error::Scheme(v) => Error::Scheme(v),
             Error::Target(never) => match never {},
         }
     }
@@ -162,6 +165,7 @@ impl<T: fmt::Debug> fmt::Display for Error<T> {
                 f,
                 "a row needs a {needed}-bit surface code, {capacity} bits are compiled in"
             ),
+            Error::Scheme(v) => write!(f, "surface codes: {v}"),
             Error::Target(e) => write!(f, "draw target failed: {e:?}"),
         }
     }

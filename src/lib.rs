@@ -26,6 +26,7 @@
 
 pub mod camera;
 pub mod codefill;
+pub mod codes;
 mod error;
 mod framebuffer;
 mod geometry;
@@ -38,6 +39,7 @@ mod span;
 
 pub use camera::{Camera, Projection};
 pub use codefill::XorFiller;
+pub use codes::SchemeViolation;
 pub use error::{CameraProblem, Error};
 pub use framebuffer::{packed_len, PackedFramebuffer};
 pub use geometry::{ScreenPoint, Viewport, GUARD_BAND_PX, MAX_SUBPIXEL_BITS, MAX_VIEWPORT};
