@@ -19,6 +19,7 @@ use embedded_graphics_core::pixelcolor::PixelColor;
 use fixed::types::extra::LeEqU32;
 use heapless::Vec;
 
+use super::active::{ActiveEdge, ActiveEdges};
 use super::compose::{self, FrameProbe, Palette};
 use super::lines::{line_pass, LineMasks};
 use super::transform::{ProjectedVertex, ScreenVertex};
@@ -81,16 +82,6 @@ struct ActiveFace {
 const NO_BIT: u16 = u16::MAX;
 const OVER: u16 = u16::MAX - 1;
 
-/// An edge of an active face.
-#[derive(Debug, Clone, Copy)]
-struct ActiveEdge {
-    edge: Edge,
-    /// The crossing on the current row (`u16::MAX` before the edge's first row).
-    x: u16,
-    /// Index of its face in the active face table.
-    face: u16,
-}
-
 /// The code-fill renderer with S = `Frac` sub-pixel bits, a surface code of
 /// `32 x WORDS` bits (at least the most faces covering one pixel), room for
 /// `FACES` faces and `EDGES` edges active on one row, and `POLY` vertices per
@@ -107,7 +98,7 @@ pub struct CodeFillRenderer<
     faces: [ActiveFace; FACES],
     live: Vec<u16, FACES>,
     free: Vec<u16, FACES>,
-    edges: Vec<ActiveEdge, EDGES>,
+    edges: ActiveEdges<EDGES>,
     /// The running code of the current row, and which face holds each bit.
     code: [u32; WORDS],
     owner: [[u16; 32]; WORDS],
@@ -160,7 +151,7 @@ impl<
     pub const fn bytes_for(faces: usize, edges: usize) -> usize {
         use core::mem::size_of;
         faces * (size_of::<ActiveFace>() + 2 * size_of::<u16>())
-            + edges * size_of::<ActiveEdge>()
+            + edges * (size_of::<ActiveEdge>() + 2 * size_of::<u16>())
             + WORDS * (size_of::<u32>() + 32 * size_of::<u16>())
             + 4 * size_of::<usize>()
     }
@@ -171,7 +162,7 @@ impl<
             faces: [NO_FACE; FACES],
             live: Vec::new(),
             free: Vec::new(),
-            edges: Vec::new(),
+            edges: ActiveEdges::new(),
             code: [0; WORDS],
             owner: [[0; 32]; WORDS],
             inside: 0,
@@ -378,42 +369,50 @@ impl<
         self.peak_faces = self.peak_faces.max(self.live.len());
         self.peak_edges = self.peak_edges.max(self.edges.len());
         let width = out.len() as u16;
-        for e in self.edges.iter_mut() {
-            e.x = if e.edge.first > i32::from(y) {
-                u16::MAX
-            } else {
-                e.edge.crossing(ctx.s).clamp(0, i32::from(width)) as u16
-            };
-        }
-        insertion_sort_by_x(&mut self.edges);
+        let row = i32::from(y);
+        self.edges.to_row(row, ctx.s, width);
         self.code = [0; WORDS];
         self.inside = 0;
         let (mut xa, mut runs) = (0u16, 0u32);
-        let mut i = 0;
-        while let Some(&ActiveEdge { x, .. }) = self.edges.get(i) {
-            if x > width {
-                break;
+        let mut k = 0;
+        while let Some(&ActiveEdge { x, .. }) = self.edges.get(k) {
+            // The edges crossing at x (edges not begun yet only hold their place).
+            let mut end = k;
+            while self.edges.get(end).is_some_and(|e| e.x == x) {
+                end += 1;
             }
-            if x != xa {
-                runs += self.resolve(xa, x, out);
-                xa = x;
-            }
-            let group = i..self.edges[i..].iter().take_while(|e| e.x == x).count() + i;
-            // Faces leaving first, so that one entering at the same place can take
-            // the bit: the code is then as wide as the most faces over one pixel.
-            for k in group.clone() {
-                let f = usize::from(self.edges[k].face);
-                if self.faces.get(f).is_some_and(|face| face.bit != NO_BIT) {
-                    self.toggle(f);
-                    self.edges[k].x = u16::MAX - 1;
+            let live = |e: &ActiveEdge| e.edge.first <= row;
+            if (k..end).any(|j| self.edges.get(j).is_some_and(live)) {
+                if x != xa {
+                    runs += self.resolve(xa, x, out);
+                    xa = x;
+                }
+                // Faces leaving first, so that one entering at the same place can
+                // take the bit: the code is then as wide as the most faces over one
+                // pixel.
+                for j in k..end {
+                    let Some(&e) = self.edges.get(j) else { break };
+                    let inside = self
+                        .faces
+                        .get(usize::from(e.face))
+                        .is_some_and(|f| f.bit != NO_BIT);
+                    if live(&e) && inside {
+                        self.toggle(usize::from(e.face));
+                        if let Some(e) = self.edges.get_mut(j) {
+                            e.mark = true;
+                        }
+                    }
+                }
+                for j in k..end {
+                    let Some(e) = self.edges.get_mut(j) else { break };
+                    let (face, enter) = (e.face, live(e) && !e.mark);
+                    e.mark = false;
+                    if enter {
+                        self.toggle(usize::from(face));
+                    }
                 }
             }
-            for k in group.clone() {
-                if self.edges[k].x == x {
-                    self.toggle(usize::from(self.edges[k].face));
-                }
-            }
-            i = group.end;
+            k = end.max(k + 1);
         }
         if xa < width {
             runs += self.resolve(xa, width, out);
@@ -457,12 +456,7 @@ impl<
     /// end there.
     fn step_row(&mut self) {
         let next = i32::from(self.row) + 1;
-        for e in self.edges.iter_mut() {
-            if e.edge.first < next {
-                e.edge.step();
-            }
-        }
-        self.edges.retain(|e| e.edge.end > next);
+        self.edges.step(next);
         let mut k = 0;
         while let Some(&f) = self.live.get(k) {
             let Some(face) = self.faces.get_mut(usize::from(f)) else {
@@ -525,12 +519,8 @@ impl<
                     continue;
                 };
                 end = end.max(edge.end);
-                let active = ActiveEdge {
-                    edge,
-                    x: u16::MAX,
-                    face: slot,
-                };
-                if self.edges.push(active).is_err() {
+                let width = ctx.viewport.width;
+                if self.edges.insert(edge, slot, ctx.s, width).is_err() {
                     return Err(Error::CapacityExceeded {
                         needed: self.edges.len() + poly.len() - added,
                         capacity: EDGES,
@@ -599,28 +589,53 @@ impl<
     /// until the winner changes, found by bisection (two planes along a row cross
     /// at most once).
     fn resolve_overlap(&self, xa: u16, xb: u16, out: &mut [u16]) -> u32 {
-        let mut faces = [[&NO_FACE; 32]; WORDS];
+        // The covering faces in index order (insertion: a few faces), as slots of
+        // the face table.
+        let mut by_id = [(0u16, 0u16); 8];
         let mut n = 0;
-        self.each_covering(|face| {
-            // Insertion by index: a few faces.
+        let mut fits = true;
+        self.each_covering(|slot, face| {
+            if n == by_id.len() {
+                fits = false;
+                return;
+            }
             let mut i = n;
-            while i > 0 && faces[(i - 1) / 32][(i - 1) % 32].id > face.id {
-                faces[i / 32][i % 32] = faces[(i - 1) / 32][(i - 1) % 32];
+            while i > 0 && by_id[i - 1].0 > face.id {
+                by_id[i] = by_id[i - 1];
                 i -= 1;
             }
-            faces[i / 32][i % 32] = face;
+            by_id[i] = (face.id, slot);
             n += 1;
         });
-        let winner = |x: u16| {
-            let mut best = faces[0][0];
-            let mut q = best.plane.at(x);
-            for face in faces.iter().flatten().take(n).skip(1) {
+        let faces = &self.faces;
+        let winner = |x: u16| -> u16 {
+            let (mut best, mut q, mut after) = (0u16, 0u32, 0u16);
+            let mut take = |face: &ActiveFace| {
                 let qf = face.plane.at(x);
-                if qf > q.saturating_add(face.plane.tie) {
-                    (best, q) = (face, qf);
+                if best == 0 || qf > q.saturating_add(face.plane.tie) {
+                    (best, q) = (face.id, qf);
                 }
+            };
+            if fits {
+                for &(_, slot) in by_id.iter().take(n) {
+                    if let Some(face) = faces.get(usize::from(slot)) {
+                        take(face);
+                    }
+                }
+                return best;
             }
-            best.id
+            // More than eight faces: take them in index order one by one.
+            loop {
+                let mut next: Option<&ActiveFace> = None;
+                self.each_covering(|_, face| {
+                    if face.id > after && next.is_none_or(|f| face.id < f.id) {
+                        next = Some(face);
+                    }
+                });
+                let Some(face) = next else { return best };
+                after = face.id;
+                take(face);
+            }
         };
         let mut runs = 0;
         let mut x = xa;
@@ -649,26 +664,16 @@ impl<
         runs
     }
 
-    /// Calls `f` on each face whose bit is set in the code.
-    fn each_covering<'a>(&'a self, mut f: impl FnMut(&'a ActiveFace)) {
-        for (k, &word) in self.code.iter().enumerate() {
+    /// Calls `f` on each face whose bit is set in the code, with its slot in the
+    /// face table.
+    fn each_covering<'a>(&'a self, mut f: impl FnMut(u16, &'a ActiveFace)) {
+        for (owners, &word) in self.owner.iter().zip(self.code.iter()) {
             let mut bits = word;
             while bits != 0 {
-                let b = bits.trailing_zeros() as usize;
+                let slot = owners[bits.trailing_zeros() as usize];
                 bits &= bits - 1;
-                f(self.owner(32 * k + b));
+                f(slot, self.faces.get(usize::from(slot)).unwrap_or(&NO_FACE));
             }
-        }
-    }
-}
-
-/// Insertion sort by crossing: the order changes little from row to row.
-fn insertion_sort_by_x(edges: &mut [ActiveEdge]) {
-    for i in 1..edges.len() {
-        let mut j = i;
-        while j > 0 && edges[j - 1].x > edges[j].x {
-            edges.swap(j - 1, j);
-            j -= 1;
         }
     }
 }

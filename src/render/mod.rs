@@ -8,6 +8,7 @@
 //! visible and a hidden mask (the P-buffer pattern decides hidden pixels), and
 //! composition turns each row into spans.
 
+mod active;
 mod codefill;
 mod compose;
 mod lines;

@@ -144,6 +144,18 @@ pub(crate) struct Edge {
 }
 
 impl Edge {
+    /// An edge crossing no row.
+    pub const ZERO: Self = Self {
+        first: 0,
+        end: 0,
+        e: 0,
+        r: 0,
+        qs: 0,
+        rs: 0,
+        dy: 1,
+        winding: 0,
+    };
+
     /// Sets up the DDA at the first visible row. Only for edges whose endpoints lie
     /// inside the guard band (see the module docs for why nothing overflows).
     pub fn new(line: &EdgeLine, clipped: Clipped, s: u32) -> Option<Self> {

@@ -1,0 +1,148 @@
+//! The active edge list of the code-fill engine: the edges of every active face,
+//! kept in order of their crossing on the current row.
+//!
+//! Records stay in place (a slot each); only a list of `u16` slot numbers is sorted,
+//! and an edge joining the list is inserted at its place, so that the per-row
+//! insertion sort moves only the few edges whose order changed.
+
+use heapless::Vec;
+
+use crate::scan::edge::Edge;
+
+/// One edge of an active face.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ActiveEdge {
+    pub edge: Edge,
+    /// The crossing on the current row, clamped to `[0, width]`; before the edge's
+    /// first row, the crossing there (the place it will take).
+    pub x: u16,
+    /// Index of its face in the active face table.
+    pub face: u16,
+    /// Scratch flag of the row's sweep.
+    pub mark: bool,
+}
+
+const UNUSED: ActiveEdge = ActiveEdge {
+    edge: Edge::ZERO,
+    x: 0,
+    face: 0,
+    mark: false,
+};
+
+/// Room for `N` active edges.
+#[derive(Debug)]
+pub(crate) struct ActiveEdges<const N: usize> {
+    slots: [ActiveEdge; N],
+    /// Slots never used since `clear`, from `fresh` on; released slots in `free`.
+    fresh: usize,
+    free: Vec<u16, N>,
+    /// Slots in use, by crossing.
+    by_x: Vec<u16, N>,
+}
+
+impl<const N: usize> ActiveEdges<N> {
+    /// No edges.
+    pub const fn new() -> Self {
+        Self {
+            slots: [UNUSED; N],
+            fresh: 0,
+            free: Vec::new(),
+            by_x: Vec::new(),
+        }
+    }
+
+    /// Forgets every edge.
+    pub fn clear(&mut self) {
+        self.fresh = 0;
+        self.free.clear();
+        self.by_x.clear();
+    }
+
+    /// Edges held.
+    pub fn len(&self) -> usize {
+        self.by_x.len()
+    }
+
+    /// The `k`-th edge by crossing.
+    pub fn get(&self, k: usize) -> Option<&ActiveEdge> {
+        self.by_x
+            .get(k)
+            .and_then(|&i| self.slots.get(usize::from(i)))
+    }
+
+    /// The `k`-th edge by crossing, to change.
+    pub fn get_mut(&mut self, k: usize) -> Option<&mut ActiveEdge> {
+        self.by_x
+            .get(k)
+            .and_then(|&i| self.slots.get_mut(usize::from(i)))
+    }
+
+    /// Adds `edge` of face `face` (DDA at its first row) at its place; `Err` when
+    /// full.
+    pub fn insert(&mut self, edge: Edge, face: u16, s: u32, width: u16) -> Result<(), ()> {
+        let slot = match self.free.pop() {
+            Some(slot) => slot,
+            None if self.fresh < N => {
+                self.fresh += 1;
+                (self.fresh - 1) as u16
+            }
+            None => return Err(()),
+        };
+        let x = edge.crossing(s).clamp(0, i32::from(width)) as u16;
+        if let Some(record) = self.slots.get_mut(usize::from(slot)) {
+            *record = ActiveEdge {
+                edge,
+                x,
+                face,
+                mark: false,
+            };
+        }
+        let slots = &self.slots;
+        let at = self
+            .by_x
+            .partition_point(|&i| slots.get(usize::from(i)).is_some_and(|e| e.x <= x));
+        self.by_x.insert(at, slot).map_err(|_| ())
+    }
+
+    /// Moves the crossings to row `y` (edges that have begun) and restores the
+    /// order: an insertion sort, since the order changes little between rows.
+    pub fn to_row(&mut self, y: i32, s: u32, width: u16) {
+        for &i in self.by_x.iter() {
+            if let Some(e) = self.slots.get_mut(usize::from(i)) {
+                if e.edge.first <= y {
+                    e.x = e.edge.crossing(s).clamp(0, i32::from(width)) as u16;
+                }
+            }
+        }
+        let key = |i: u16| self.slots.get(usize::from(i)).map_or(0, |e| e.x);
+        for k in 1..self.by_x.len() {
+            let moving = self.by_x[k];
+            let x = key(moving);
+            let mut j = k;
+            while j > 0 && key(self.by_x[j - 1]) > x {
+                self.by_x[j] = self.by_x[j - 1];
+                j -= 1;
+            }
+            self.by_x[j] = moving;
+        }
+    }
+
+    /// Steps the edges that have begun past row `next - 1` and drops those that end
+    /// there.
+    pub fn step(&mut self, next: i32) {
+        let (slots, free) = (&mut self.slots, &mut self.free);
+        self.by_x.retain(|&i| {
+            let Some(e) = slots.get_mut(usize::from(i)) else {
+                return false;
+            };
+            if e.edge.end <= next {
+                let _ = free.push(i);
+                return false;
+            }
+            if e.edge.first < next {
+                e.edge.step();
+            }
+            true
+        });
+    }
+}
