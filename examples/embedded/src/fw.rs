@@ -98,7 +98,10 @@ impl Counter {
         let _ = self.syst.has_wrapped(); // clears COUNTFLAG
         let r = f();
         let ticks = 0x00ff_ffff - SYST::get_current();
-        assert!(!self.syst.has_wrapped(), "SysTick wrapped: measure in chunks");
+        assert!(
+            !self.syst.has_wrapped(),
+            "SysTick wrapped: measure in chunks"
+        );
         (r, ticks * 40)
     }
 }
@@ -119,7 +122,8 @@ pub fn build_edges<'s, const VN: usize, const IN: usize>(
 ) -> EdgeAdjacency<'s> {
     let mut weld = [0u32; VN];
     let mut scratch = [HalfEdgeRecord::EMPTY; IN];
-    EdgeAdjacency::build(mesh, 30.0, &mut weld, &mut scratch, store).unwrap_or_else(|e| fail(name, &e))
+    EdgeAdjacency::build(mesh, 30.0, &mut weld, &mut scratch, store)
+        .unwrap_or_else(|e| fail(name, &e))
 }
 
 /// Renders `frames` frames with `draw(n, counter)` (which clears and draws frame `n`,

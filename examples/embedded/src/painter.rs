@@ -47,12 +47,8 @@ impl<const V: usize, const F: usize> PainterBuffers<V, F> {
         let size = target.bounding_box().size;
         let cam = Cam::new(view, size.width as usize, size.height as usize);
         for (s, &p) in self.screen.iter_mut().zip(mesh.vertices()) {
-            let e = cam.to_eye(p);
-            let q = if e[2] > 0.0 {
-                cam.project(e)
-            } else {
-                [0.0; 3]
-            };
+            let e = cam.eye_space(p);
+            let q = if e[2] > 0.0 { cam.project(e) } else { [0.0; 3] };
             *s = (Point::new(floor_i(q[0]), floor_i(q[1])), e[2]);
         }
         let mut n = 0;

@@ -6,7 +6,6 @@
 //! edge list comes from the library's `EdgeAdjacency` (built once at boot, as the host
 //! baseline builds its own once per mesh). Shared with the host test by path.
 
-use micromath::F32Ext;
 use pbuffer::mesh::{Mesh, MeshEdge};
 use pbuffer::Pattern;
 
@@ -33,7 +32,7 @@ pub fn sqrt(x: f32) -> f32 {
     if x <= 0.0 {
         return 0.0;
     }
-    let mut y = x.sqrt();
+    let mut y = micromath::F32Ext::sqrt(x);
     y = 0.5 * (y + x / y);
     0.5 * (y + x / y)
 }
@@ -83,7 +82,7 @@ impl Cam {
             s,
             u,
             f,
-            t: (v.fov_deg * (core::f32::consts::PI / 360.0)).tan(),
+            t: micromath::F32Ext::tan(v.fov_deg * (core::f32::consts::PI / 360.0)),
             aspect: width as f32 / height as f32,
             near: v.near,
             far: v.far,
@@ -92,7 +91,7 @@ impl Cam {
         }
     }
     /// Eye space as (x, y, distance along the view direction).
-    pub fn to_eye(&self, p: V3) -> V3 {
+    pub fn eye_space(&self, p: V3) -> V3 {
         let d = sub(p, self.eye);
         [dot(self.s, d), dot(self.u, d), dot(self.f, d)]
     }
@@ -137,7 +136,13 @@ const MAXP: usize = 24;
 fn clip_polygon(poly: &mut [V3; MAXP], mut n: usize, near: f32, far: f32) -> usize {
     let mut tmp = [[0.0f32; 3]; MAXP];
     for (plane, keep_ge) in [(near, true), (far, false)] {
-        let inside = |p: &V3| if keep_ge { p[2] >= plane } else { p[2] <= plane };
+        let inside = |p: &V3| {
+            if keep_ge {
+                p[2] >= plane
+            } else {
+                p[2] <= plane
+            }
+        };
         if poly[..n].iter().all(inside) {
             continue;
         }
@@ -214,7 +219,7 @@ impl<const P: usize, const NB: usize, const V: usize, const F: usize> PlainBuffe
         self.ids.fill(0);
         self.frame.fill(0);
         for (e, &p) in self.eye_v.iter_mut().zip(mesh.vertices()) {
-            *e = cam.to_eye(p);
+            *e = cam.eye_space(p);
         }
         for f in 0..mesh.face_count() {
             self.facing[f] = facing(mesh, f, self.normals[f], cam.eye);
@@ -238,7 +243,10 @@ impl<const P: usize, const NB: usize, const V: usize, const F: usize> PlainBuffe
             for (slot, &v) in poly.iter_mut().zip(face) {
                 *slot = self.eye_v[v as usize];
             }
-            if !poly[..n].iter().all(|p| p[2] >= cam.near && p[2] <= cam.far) {
+            if !poly[..n]
+                .iter()
+                .all(|p| p[2] >= cam.near && p[2] <= cam.far)
+            {
                 n = clip_polygon(&mut poly, n, cam.near, cam.far);
             }
             if n < 3 {
@@ -271,7 +279,13 @@ impl<const P: usize, const NB: usize, const V: usize, const F: usize> PlainBuffe
             let (mut p, mut q) = (self.eye_v[e.a as usize], self.eye_v[e.b as usize]);
             let mut ok = true;
             for (plane, keep_ge) in [(cam.near, true), (cam.far, false)] {
-                let ins = |v: &V3| if keep_ge { v[2] >= plane } else { v[2] <= plane };
+                let ins = |v: &V3| {
+                    if keep_ge {
+                        v[2] >= plane
+                    } else {
+                        v[2] <= plane
+                    }
+                };
                 match (ins(&p), ins(&q)) {
                     (true, true) => {}
                     (false, false) => ok = false,

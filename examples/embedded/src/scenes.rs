@@ -241,7 +241,9 @@ pub type PanelBuffers = Buffers<
 
 /// Draws one frame of `mesh` seen from `view` into `sink` with pbuffer's engine:
 /// `mode` with culling on for closed meshes and the paper's pattern.
-pub fn render<K: SpanSink<Color = embedded_graphics::pixelcolor::BinaryColor, Error = Infallible>>(
+pub fn render<
+    K: SpanSink<Color = embedded_graphics::pixelcolor::BinaryColor, Error = Infallible>,
+>(
     engine: &mut Engine,
     mesh: &Mesh<'_>,
     edges: &EdgeAdjacency<'_>,
@@ -257,15 +259,15 @@ pub fn render<K: SpanSink<Color = embedded_graphics::pixelcolor::BinaryColor, Er
         pattern: Pattern::PAPER,
     };
     engine.render(
-            mesh,
-            edges,
-            &camera,
-            &settings,
-            ws,
-            &MonoPalette::default(),
-            sink,
-            &mut (),
-        )
+        mesh,
+        edges,
+        &camera,
+        &settings,
+        ws,
+        &MonoPalette::default(),
+        sink,
+        &mut (),
+    )
 }
 
 /// FNV-1a 64, as `render --hash` computes it.

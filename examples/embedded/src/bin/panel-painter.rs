@@ -9,12 +9,16 @@ use cortex_m_rt::entry;
 use panic_semihosting as _;
 use pbuffer::mesh::Mesh;
 use pbuffer::{packed_len, PackedFramebuffer};
+use pbuffer_examples::fw;
 use pbuffer_examples::painter::PainterBuffers;
 use pbuffer_examples::scenes::{fnv1a64, panel as scene};
-use pbuffer_examples::fw;
 
 const NAME: &str = "panel-painter";
-type Fb = PackedFramebuffer<{ scene::WIDTH }, { scene::HEIGHT }, { packed_len(scene::WIDTH, scene::HEIGHT) }>;
+type Fb = PackedFramebuffer<
+    { scene::WIDTH },
+    { scene::HEIGHT },
+    { packed_len(scene::WIDTH, scene::HEIGHT) },
+>;
 
 static mut FB: Fb = Fb::new();
 static mut BUFFERS: PainterBuffers<24, 16> = PainterBuffers::new();

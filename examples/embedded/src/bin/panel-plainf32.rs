@@ -9,9 +9,9 @@ use cortex_m_rt::entry;
 use panic_semihosting as _;
 use pbuffer::mesh::{Mesh, MeshEdge};
 use pbuffer::{packed_len, Pattern};
+use pbuffer_examples::fw;
 use pbuffer_examples::plain::PlainBuffers;
 use pbuffer_examples::scenes::{fnv1a64, panel as scene};
-use pbuffer_examples::fw;
 
 const NAME: &str = "panel-plainf32";
 const PIXELS: usize = scene::WIDTH * scene::HEIGHT;
@@ -35,7 +35,15 @@ fn main() -> ! {
     fw::run(NAME, scene::FRAMES, boot, &mut counter, |n, c| {
         let view = scene::view(n);
         let ((), instructions) = c.count(|| {
-            buffers.render(&mesh, edges.edges(), cull, &view, scene::WIDTH, scene::HEIGHT, &Pattern::PAPER)
+            buffers.render(
+                &mesh,
+                edges.edges(),
+                cull,
+                &view,
+                scene::WIDTH,
+                scene::HEIGHT,
+                &Pattern::PAPER,
+            )
         });
         (fnv1a64(&buffers.frame), instructions)
     })

@@ -14,7 +14,11 @@ use pbuffer_examples::fw;
 use pbuffer_examples::scenes::{self, fnv1a64, panel as scene, Engine, PanelBuffers};
 
 const NAME: &str = "panel";
-type Fb = PackedFramebuffer<{ scene::WIDTH }, { scene::HEIGHT }, { packed_len(scene::WIDTH, scene::HEIGHT) }>;
+type Fb = PackedFramebuffer<
+    { scene::WIDTH },
+    { scene::HEIGHT },
+    { packed_len(scene::WIDTH, scene::HEIGHT) },
+>;
 
 static mut FB: Fb = Fb::new();
 static mut BUFFERS: PanelBuffers = PanelBuffers::new();
@@ -36,15 +40,22 @@ fn main() -> ! {
     };
     let mesh = Mesh::new(&scene::VERTICES, &scene::INDICES, &scene::OFFSETS)
         .unwrap_or_else(|e| fw::fail(NAME, &e));
-    let edges = fw::build_edges::<{ scene::VERTICES.len() }, { scene::INDICES.len() }>(
-        NAME, &mesh, store,
-    );
+    let edges =
+        fw::build_edges::<{ scene::VERTICES.len() }, { scene::INDICES.len() }>(NAME, &mesh, store);
     let boot = fw::stack_peak();
     fw::run(NAME, scene::FRAMES, boot, &mut counter, |n, c| {
         let view = scene::view(n);
         let (r, instructions) = c.count(|| {
             fb.clear();
-            scenes::render(engine, &mesh, &edges, &view, DrawMode::Dashed, &mut buffers.workspace(), fb)
+            scenes::render(
+                engine,
+                &mesh,
+                &edges,
+                &view,
+                DrawMode::Dashed,
+                &mut buffers.workspace(),
+                fb,
+            )
         });
         let _stats = r.unwrap_or_else(|e| fw::fail(NAME, &e));
         #[cfg(feature = "defmt")]

@@ -13,7 +13,11 @@ use pbuffer_examples::scenes::{self, fnv1a64, suzanne as scene, Engine, SuzanneB
 use pbuffer_examples::{fw, suzanne};
 
 const NAME: &str = "surfaces";
-type Fb = PackedFramebuffer<{ scene::WIDTH }, { scene::HEIGHT }, { packed_len(scene::WIDTH, scene::HEIGHT) }>;
+type Fb = PackedFramebuffer<
+    { scene::WIDTH },
+    { scene::HEIGHT },
+    { packed_len(scene::WIDTH, scene::HEIGHT) },
+>;
 
 static mut FB: Fb = Fb::new();
 static mut BUFFERS: SuzanneBuffers = SuzanneBuffers::new();
@@ -43,7 +47,15 @@ fn main() -> ! {
         let view = scene::view(n);
         let (r, instructions) = c.count(|| {
             fb.clear();
-            scenes::render(engine, &mesh, &edges, &view, DrawMode::SurfacesDashed, &mut buffers.workspace(), fb)
+            scenes::render(
+                engine,
+                &mesh,
+                &edges,
+                &view,
+                DrawMode::SurfacesDashed,
+                &mut buffers.workspace(),
+                fb,
+            )
         });
         let _stats = r.unwrap_or_else(|e| fw::fail(NAME, &e));
         #[cfg(feature = "defmt")]

@@ -14,7 +14,11 @@ use pbuffer_examples::scenes::{fnv1a64, suzanne as scene};
 use pbuffer_examples::{fw, suzanne};
 
 const NAME: &str = "suzanne-painter";
-type Fb = PackedFramebuffer<{ scene::WIDTH }, { scene::HEIGHT }, { packed_len(scene::WIDTH, scene::HEIGHT) }>;
+type Fb = PackedFramebuffer<
+    { scene::WIDTH },
+    { scene::HEIGHT },
+    { packed_len(scene::WIDTH, scene::HEIGHT) },
+>;
 
 static mut FB: Fb = Fb::new();
 static mut BUFFERS: PainterBuffers<507, 500> = PainterBuffers::new();

@@ -35,7 +35,15 @@ fn main() -> ! {
     fw::run(NAME, scene::FRAMES, boot, &mut counter, |n, c| {
         let view = scene::view(n);
         let ((), instructions) = c.count(|| {
-            buffers.render(&mesh, edges.edges(), cull, &view, scene::WIDTH, scene::HEIGHT, &Pattern::PAPER)
+            buffers.render(
+                &mesh,
+                edges.edges(),
+                cull,
+                &view,
+                scene::WIDTH,
+                scene::HEIGHT,
+                &Pattern::PAPER,
+            )
         });
         (fnv1a64(&buffers.frame), instructions)
     })
