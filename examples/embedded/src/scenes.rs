@@ -1,0 +1,278 @@
+//! The scenes of the firmware examples: cameras per frame, the bracket mesh, the
+//! renderer configuration and the one call that draws a frame. `no_std`; shared with
+//! the host test `host_tests/tests/firmware_examples.rs` (included there by path), so
+//! the host renders the very same frames with the very same code.
+
+use core::convert::Infallible;
+
+use fixed::types::extra::U4;
+use pbuffer::mesh::{EdgeAdjacency, Mesh};
+use pbuffer::render::{ClipVertex, ProjectedVertex, ScreenVertex};
+use pbuffer::{
+    Camera, Cull, DrawMode, Error, MonoPalette, Pattern, Projection, Settings, SpanSink, Stats,
+    Workspace, ZBufferRenderer,
+};
+
+/// The engine every pbuffer example renders with: the banded Z-buffer + P-buffer
+/// renderer, S = 4 sub-pixel bits, 16 scan-converter edges, 16 clipped vertices.
+/// Switching engine is this line (and [`DepthSample`]).
+pub type Engine = ZBufferRenderer<U4, 16, 16>;
+/// Depth samples of the band buffer.
+pub type DepthSample = u16;
+
+/// A perspective camera looking at `target`, `up` = +Y.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct View {
+    pub eye: [f32; 3],
+    pub target: [f32; 3],
+    pub fov_deg: f32,
+    pub near: f32,
+    pub far: f32,
+}
+
+impl View {
+    /// The library camera.
+    pub fn camera(&self) -> Result<Camera, Error> {
+        Camera::new(
+            self.eye,
+            self.target,
+            [0.0, 1.0, 0.0],
+            Projection::Perspective {
+                fov_y_deg: self.fov_deg,
+            },
+            self.near,
+            self.far,
+        )
+    }
+}
+
+/// Suzanne at 400 x 240: the eye orbits the model's centre, 15 degrees a frame.
+pub mod suzanne {
+    use super::View;
+    pub const WIDTH: usize = 400;
+    pub const HEIGHT: usize = 240;
+    /// Rows per band (18 stored rows with the apron).
+    pub const BAND: usize = 16;
+    pub const FRAMES: u32 = 8;
+    const TARGET: [f32; 3] = [-2.49, 1.25, 4.1];
+    /// `TARGET + (5 sin t, 1.2, 5 cos t)` for t = -45, -30, ..., 60 degrees.
+    const EYES: [[f32; 3]; FRAMES as usize] = [
+        [-6.0255, 2.45, 7.6355],
+        [-4.99, 2.45, 8.4301],
+        [-3.7841, 2.45, 8.9296],
+        [-2.49, 2.45, 9.1],
+        [-1.1959, 2.45, 8.9296],
+        [0.01, 2.45, 8.4301],
+        [1.0455, 2.45, 7.6355],
+        [1.8401, 2.45, 6.6],
+    ];
+    /// The camera of frame `n`.
+    pub fn view(n: u32) -> View {
+        View {
+            eye: EYES[n as usize % EYES.len()],
+            target: TARGET,
+            fov_deg: 35.0,
+            near: 1.0,
+            far: 20.0,
+        }
+    }
+}
+
+/// The 128 x 64 instrument panel: an L-bracket with a hexagonal boss, turning.
+pub mod panel {
+    use super::View;
+    pub const WIDTH: usize = 128;
+    pub const HEIGHT: usize = 64;
+    /// Rows per band (10 stored rows with the apron).
+    pub const BAND: usize = 8;
+    pub const FRAMES: u32 = 4;
+    const TARGET: [f32; 3] = [1.5, 0.7, 0.0];
+    /// `(1.5 + 6 sin t, 4, 6 cos t)` for t = 20, 45, 70, 95 degrees.
+    const EYES: [[f32; 3]; FRAMES as usize] = [
+        [3.5521, 4.0, 5.6382],
+        [5.7426, 4.0, 4.2426],
+        [7.1382, 4.0, 2.0521],
+        [7.4772, 4.0, -0.5229],
+    ];
+    /// The camera of frame `n`.
+    pub fn view(n: u32) -> View {
+        View {
+            eye: EYES[n as usize % EYES.len()],
+            target: TARGET,
+            fov_deg: 35.0,
+            near: 1.0,
+            far: 30.0,
+        }
+    }
+
+    /// An L profile (x, y) extruded over z in [-1, 1] (vertices 0-11), and a hexagonal
+    /// boss of radius 0.45 on its foot, y in [0.6, 1.4] (vertices 12-23).
+    pub const VERTICES: [[f32; 3]; 24] = [
+        [0.0, 0.0, -1.0],
+        [3.0, 0.0, -1.0],
+        [3.0, 0.6, -1.0],
+        [0.6, 0.6, -1.0],
+        [0.6, 2.0, -1.0],
+        [0.0, 2.0, -1.0],
+        [0.0, 0.0, 1.0],
+        [3.0, 0.0, 1.0],
+        [3.0, 0.6, 1.0],
+        [0.6, 0.6, 1.0],
+        [0.6, 2.0, 1.0],
+        [0.0, 2.0, 1.0],
+        // boss, bottom ring (angle 0, 60, ..., 300 degrees in the x-z plane)
+        [2.25, 0.6, 0.0],
+        [2.025, 0.6, 0.3897114],
+        [1.575, 0.6, 0.3897114],
+        [1.35, 0.6, 0.0],
+        [1.575, 0.6, -0.3897114],
+        [2.025, 0.6, -0.3897114],
+        // top ring
+        [2.25, 1.4, 0.0],
+        [2.025, 1.4, 0.3897114],
+        [1.575, 1.4, 0.3897114],
+        [1.35, 1.4, 0.0],
+        [1.575, 1.4, -0.3897114],
+        [2.025, 1.4, -0.3897114],
+    ];
+    /// Faces, counter-clockwise from outside: L front, L back, 6 L sides, boss
+    /// top, bottom and 6 sides.
+    pub const INDICES: [u32; 72] = [
+        6, 7, 8, 9, 10, 11, // front (z = 1), concave
+        5, 4, 3, 2, 1, 0, // back
+        0, 1, 7, 6, //
+        1, 2, 8, 7, //
+        2, 3, 9, 8, //
+        3, 4, 10, 9, //
+        4, 5, 11, 10, //
+        5, 0, 6, 11, //
+        23, 22, 21, 20, 19, 18, // boss top
+        12, 13, 14, 15, 16, 17, // boss bottom
+        13, 12, 18, 19, //
+        14, 13, 19, 20, //
+        15, 14, 20, 21, //
+        16, 15, 21, 22, //
+        17, 16, 22, 23, //
+        12, 17, 23, 18, //
+    ];
+    pub const OFFSETS: [u32; 17] = [
+        0, 6, 12, 16, 20, 24, 28, 32, 36, 42, 48, 52, 56, 60, 64, 68, 72,
+    ];
+    /// Unique edges: 18 of the L, 18 of the boss.
+    pub const EDGES: usize = 36;
+}
+
+/// A zero vertex, for `static` buffers.
+pub const ZERO_VERTEX: ProjectedVertex = ProjectedVertex {
+    clip: ClipVertex { x: 0, y: 0, z: 0 },
+    screen: ScreenVertex { x: 0, y: 0, q: 0 },
+    outside: 0,
+};
+
+/// Words of a bitset of `n` bits.
+pub const fn words(n: usize) -> usize {
+    n.div_ceil(32)
+}
+
+/// The lent working memory of one scene: `V` vertices, `FW` face-bit words, `EW`
+/// edge-bit words, `ST` depth and id samples (width x (band + 2)), `LW` line words
+/// (2 x ceil(width / 32) x band). Zero-initialised, so a `static` of it is `.bss`.
+#[derive(Debug)]
+pub struct Buffers<
+    const V: usize,
+    const FW: usize,
+    const EW: usize,
+    const ST: usize,
+    const LW: usize,
+> {
+    pub vertices: [ProjectedVertex; V],
+    pub drawn: [u32; FW],
+    pub features: [u32; EW],
+    pub depth: [DepthSample; ST],
+    pub ids: [u16; ST],
+    pub lines: [u32; LW],
+}
+
+impl<const V: usize, const FW: usize, const EW: usize, const ST: usize, const LW: usize>
+    Buffers<V, FW, EW, ST, LW>
+{
+    /// All zero.
+    pub const fn new() -> Self {
+        Self {
+            vertices: [ZERO_VERTEX; V],
+            drawn: [0; FW],
+            features: [0; EW],
+            depth: [0; ST],
+            ids: [0; ST],
+            lines: [0; LW],
+        }
+    }
+
+    /// The workspace the renderer borrows.
+    pub fn workspace(&mut self) -> Workspace<'_, DepthSample> {
+        Workspace {
+            vertices: &mut self.vertices,
+            drawn: &mut self.drawn,
+            features: &mut self.features,
+            depth: &mut self.depth,
+            ids: &mut self.ids,
+            lines: &mut self.lines,
+        }
+    }
+}
+
+/// Buffers for suzanne (507 vertices, 500 faces, <= 1024 edges) at 400 x 240 in
+/// 16-row bands.
+pub type SuzanneBuffers = Buffers<
+    507,
+    { words(500) },
+    { words(1024) },
+    { suzanne::WIDTH * (suzanne::BAND + 2) },
+    { 2 * words(suzanne::WIDTH) * suzanne::BAND },
+>;
+/// Buffers for the panel part at 128 x 64 in 8-row bands.
+pub type PanelBuffers = Buffers<
+    24,
+    1,
+    { words(panel::EDGES) },
+    { panel::WIDTH * (panel::BAND + 2) },
+    { 2 * words(panel::WIDTH) * panel::BAND },
+>;
+
+/// Draws one frame of `mesh` seen from `view` into `sink` with pbuffer's engine:
+/// `mode` with culling on for closed meshes and the paper's pattern.
+pub fn render<
+    K: SpanSink<Color = embedded_graphics::pixelcolor::BinaryColor, Error = Infallible>,
+>(
+    engine: &mut Engine,
+    mesh: &Mesh<'_>,
+    edges: &EdgeAdjacency<'_>,
+    view: &View,
+    mode: DrawMode,
+    ws: &mut Workspace<'_, DepthSample>,
+    sink: &mut K,
+) -> Result<Stats, Error> {
+    let camera = view.camera()?;
+    let settings = Settings {
+        mode,
+        cull: Cull::Auto,
+        pattern: Pattern::PAPER,
+    };
+    engine.render(
+        mesh,
+        edges,
+        &camera,
+        &settings,
+        ws,
+        &MonoPalette::default(),
+        sink,
+        &mut (),
+    )
+}
+
+/// FNV-1a 64, as `render --hash` computes it.
+pub fn fnv1a64(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
+    })
+}

@@ -1,0 +1,180 @@
+//! The firmware examples' frames, rendered on the host with the same code: the scene,
+//! engine and baseline modules of `examples/embedded` are included here by path, and
+//! suzanne is parsed by the same converter (`examples/embedded/obj.rs`) that the
+//! firmware's build.rs runs. Prints one line per frame,
+//!
+//! ```text
+//! frame EXAMPLE N hash=HEX
+//! ```
+//!
+//! which `scripts/firmware` compares with the lines the firmware prints under QEMU
+//! (any difference fails it). Writes nothing to disk.
+
+#[allow(dead_code)]
+#[path = "../../examples/embedded/obj.rs"]
+mod obj;
+#[allow(dead_code)]
+#[path = "../../examples/embedded/src/painter.rs"]
+mod painter;
+#[allow(dead_code)]
+#[path = "../../examples/embedded/src/plain.rs"]
+mod plain;
+#[allow(dead_code)]
+#[path = "../../examples/embedded/src/scenes.rs"]
+mod scenes;
+
+use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
+use pbuffer::render::storage_rows;
+use pbuffer::{packed_len, DrawMode, PackedFramebuffer, Pattern};
+use scenes::{fnv1a64, panel, suzanne, View};
+
+/// A scene: its mesh arrays, size and cameras.
+struct Scene {
+    name: &'static str,
+    vertices: Vec<[f32; 3]>,
+    indices: Vec<u32>,
+    offsets: Vec<u32>,
+    frames: u32,
+    view: fn(u32) -> View,
+}
+
+fn suzanne_scene() -> Scene {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../examples/embedded/models/suzanne.obj"
+    );
+    let text = std::fs::read_to_string(path).expect("read the examples' suzanne.obj");
+    let m = obj::parse(&text, "suzanne.obj").expect("parses");
+    Scene {
+        name: "suzanne",
+        vertices: m.vertices,
+        indices: m.indices,
+        offsets: m.offsets,
+        frames: suzanne::FRAMES,
+        view: suzanne::view,
+    }
+}
+
+fn panel_scene() -> Scene {
+    Scene {
+        name: "panel",
+        vertices: panel::VERTICES.to_vec(),
+        indices: panel::INDICES.to_vec(),
+        offsets: panel::OFFSETS.to_vec(),
+        frames: panel::FRAMES,
+        view: panel::view,
+    }
+}
+
+fn edges<'s>(mesh: &Mesh<'_>, store: &'s mut [MeshEdge]) -> EdgeAdjacency<'s> {
+    let mut weld = vec![0u32; mesh.vertices().len()];
+    let mut scratch = vec![HalfEdgeRecord::EMPTY; mesh.indices().len()];
+    EdgeAdjacency::build(mesh, 30.0, &mut weld, &mut scratch, store).expect("adjacency")
+}
+
+fn print(name: &str, n: u32, bytes: &[u8]) -> u32 {
+    println!("frame {name} {n} hash={:016x}", fnv1a64(bytes));
+    bytes.iter().map(|b| b.count_ones()).sum()
+}
+
+/// The engine examples, the painter and the plain f32 baseline on one scene, exactly
+/// as the firmware binaries run them (buffer sizes included).
+macro_rules! run_scene {
+    ($s:expr, $w:expr, $h:expr, $buffers:ty, $v:expr, $f:expr, [$(($example:expr, $mode:expr)),*]) => {{
+        const N: usize = packed_len($w, $h);
+        let s: &Scene = $s;
+        let mesh = Mesh::new(&s.vertices, &s.indices, &s.offsets).expect("mesh");
+        let mut store = vec![MeshEdge::EMPTY; s.indices.len()];
+        let adjacency = edges(&mesh, &mut store);
+        let mut engine = Box::new(scenes::Engine::new());
+        $(
+            let mut b = Box::new(<$buffers>::new());
+            for n in 0..s.frames {
+                let mut fb = Box::new(PackedFramebuffer::<{ $w }, { $h }, N>::new());
+                let view = (s.view)(n);
+                let mut ws = b.workspace();
+                let stats = scenes::render(&mut engine, &mesh, &adjacency, &view, $mode, &mut ws, &mut *fb)
+                    .expect("renders");
+                assert!(stats.feature_edges > 0);
+                let lit = print($example, n, fb.as_bytes());
+                assert!(lit > 100, "{} {n}: {lit} pixels", $example);
+            }
+        )*
+        let mut p = Box::new(painter::PainterBuffers::<{ $v }, { $f }>::new());
+        p.prepare(&mesh);
+        let mut plain = Box::new(plain::PlainBuffers::<{ $w * $h }, N, { $v }, { $f }>::new());
+        plain.prepare(&mesh);
+        for n in 0..s.frames {
+            let view = (s.view)(n);
+            let mut fb = Box::new(PackedFramebuffer::<{ $w }, { $h }, N>::new());
+            p.render(&mesh, &view, &mut *fb).expect("painter");
+            print(&format!("{}-painter", s.name), n, fb.as_bytes());
+            plain.render(&mesh, adjacency.edges(), adjacency.is_closed(), &view, $w, $h, &Pattern::PAPER);
+            print(&format!("{}-plainf32", s.name), n, &plain.frame);
+        }
+    }};
+}
+
+#[test]
+fn firmware_example_frames() {
+    // Large buffers: run on a thread with room for them.
+    std::thread::Builder::new()
+        .stack_size(64 << 20)
+        .spawn(|| {
+            let suz = suzanne_scene();
+            let probe = Mesh::new(&suz.vertices, &suz.indices, &suz.offsets).expect("mesh");
+            let m = obj::ObjMesh {
+                vertices: suz.vertices.clone(),
+                indices: suz.indices.clone(),
+                offsets: suz.offsets.clone(),
+            };
+            let mut store = vec![MeshEdge::EMPTY; suz.indices.len()];
+            // The converter's edge count sizes the firmware's edge store exactly.
+            assert_eq!(edges(&probe, &mut store).edges().len(), m.unique_edges());
+            assert!(
+                m.unique_edges() <= 1024,
+                "SuzanneBuffers holds 1024 edge bits"
+            );
+            assert_eq!((suz.vertices.len(), probe.face_count()), (507, 500));
+            let pan = panel_scene();
+            let pm = obj::ObjMesh {
+                vertices: pan.vertices.clone(),
+                indices: pan.indices.clone(),
+                offsets: pan.offsets.clone(),
+            };
+            assert_eq!(pm.unique_edges(), panel::EDGES);
+            // The buffers hold a band plus its apron.
+            assert_eq!(
+                usize::from(storage_rows(suzanne::BAND as u16, 240)),
+                suzanne::BAND + 2
+            );
+            assert_eq!(
+                usize::from(storage_rows(panel::BAND as u16, 64)),
+                panel::BAND + 2
+            );
+            run_scene!(
+                &suz,
+                400,
+                240,
+                scenes::SuzanneBuffers,
+                507,
+                500,
+                [
+                    ("suzanne", DrawMode::Dashed),
+                    ("surfaces", DrawMode::SurfacesDashed)
+                ]
+            );
+            run_scene!(
+                &pan,
+                128,
+                64,
+                scenes::PanelBuffers,
+                24,
+                16,
+                [("panel", DrawMode::Dashed)]
+            );
+        })
+        .expect("spawn")
+        .join()
+        .expect("the frames render");
+}
