@@ -404,7 +404,9 @@ impl<
                     }
                 }
                 for j in k..end {
-                    let Some(e) = self.edges.get_mut(j) else { break };
+                    let Some(e) = self.edges.get_mut(j) else {
+                        break;
+                    };
                     let (face, enter) = (e.face, live(e) && !e.mark);
                     e.mark = false;
                     if enter {

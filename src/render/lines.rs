@@ -273,16 +273,19 @@ pub(crate) fn edge_on_screen(
     Some((ctx.view.project(&first), ctx.view.project(&last)))
 }
 
-/// The last two faces tested by the line pass: polygon and depth plane.
+/// Faces the line pass keeps set up: an edge's pixels meet the same few faces.
+const CACHED_FACES: usize = 2;
+
+/// The last faces tested by the line pass: polygon and depth plane.
 struct FaceCache<const POLY: usize> {
-    slots: [(u16, Vec<ScreenVertex, POLY>, Option<DepthPlane>); 2],
+    slots: [(u16, Vec<ScreenVertex, POLY>, Option<DepthPlane>); CACHED_FACES],
     next: usize,
 }
 
 impl<const POLY: usize> FaceCache<POLY> {
     fn new() -> Self {
         Self {
-            slots: [(0, Vec::new(), None), (0, Vec::new(), None)],
+            slots: [const { (0, Vec::new(), None) }; CACHED_FACES],
             next: 0,
         }
     }
@@ -300,7 +303,7 @@ impl<const POLY: usize> FaceCache<POLY> {
             Some(k) => k,
             None => {
                 let k = self.next;
-                self.next ^= 1;
+                self.next = (self.next + 1) % CACHED_FACES;
                 let (cid, poly, plane) = &mut self.slots[k];
                 let f = usize::from(id - 1);
                 *cid = id;

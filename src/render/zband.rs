@@ -53,9 +53,11 @@ pub(crate) struct DepthPlane {
     x0: i64,
     y0: i64,
     q0: i64,
-    a: i128,
-    b: i128,
-    den: i128,
+    a: i64,
+    b: i64,
+    den: i64,
+    /// Sub-pixel bits.
+    s: u32,
     /// Fast form for spans, `STEP_BITS` fraction bits: nearness at the centre of
     /// pixel (`i0`, `j0`) and its change per pixel along x and y.
     i0: i64,
@@ -76,21 +78,18 @@ impl DepthPlane {
         let v0 = poly.first()?;
         let p = |v: &ScreenVertex| (2 * i64::from(v.x), 2 * i64::from(v.y), i64::from(v.q));
         let (x0, y0, q0) = p(v0);
-        let mut best: Option<(i128, Self)> = None;
+        // In 64 bits: inside the guard band coordinate differences are below 2^28
+        // half-units and nearness differences below 2^32, so every product is below
+        // 2^60 (wrapping ops only spare the overflow checks).
+        let mut best: Option<(i64, Self)> = None;
         for pair in poly.get(1..)?.windows(2) {
             let [v1, v2] = pair else { continue };
             let ((x1, y1, q1), (x2, y2, q2)) = (p(v1), p(v2));
-            let (dx1, dy1, dq1) = (
-                i128::from(x1 - x0),
-                i128::from(y1 - y0),
-                i128::from(q1 - q0),
-            );
-            let (dx2, dy2, dq2) = (
-                i128::from(x2 - x0),
-                i128::from(y2 - y0),
-                i128::from(q2 - q0),
-            );
-            let den = dx1 * dy2 - dx2 * dy1;
+            let (dx1, dy1, dq1) = (x1 - x0, y1 - y0, q1 - q0);
+            let (dx2, dy2, dq2) = (x2 - x0, y2 - y0, q2 - q0);
+            let cross =
+                |a: i64, b: i64, c: i64, d: i64| a.wrapping_mul(b).wrapping_sub(c.wrapping_mul(d));
+            let den = cross(dx1, dy2, dx2, dy1);
             if den == 0 || best.is_some_and(|(area, _)| area >= den.abs()) {
                 continue;
             }
@@ -98,9 +97,10 @@ impl DepthPlane {
                 x0,
                 y0,
                 q0,
-                a: dq1 * dy2 - dq2 * dy1,
-                b: dq2 * dx1 - dq1 * dx2,
+                a: cross(dq1, dy2, dq2, dy1),
+                b: cross(dq2, dx1, dq1, dx2),
                 den,
+                s,
                 i0: 0,
                 j0: 0,
                 q_ref: 0,
@@ -120,18 +120,16 @@ impl DepthPlane {
         // The fast form, set up once per face: one exact evaluation and two slopes.
         // Steeper than 2^47 per pixel leaves the Q1.31 range within a pixel anyway.
         let limit = 1i128 << 47;
-        let per_pixel = |c: i128| {
+        let per_pixel = |c: i64| {
             // 64-bit when it fits (most faces): a 128-bit divide is a long library
             // call on a Cortex-M4.
             let shift = s + 1 + STEP_BITS;
-            if let (Ok(c64), Ok(d64)) = (i64::try_from(c), i64::try_from(plane.den)) {
-                if c64.unsigned_abs() < 1u64 << (62 - shift) {
-                    let q = (c64 << shift).checked_div_euclid(d64).unwrap_or(0);
-                    return q.clamp(-(1i64 << 47), 1i64 << 47);
-                }
+            if c.unsigned_abs() < 1u64 << (62 - shift) {
+                let q = (c << shift).checked_div_euclid(plane.den).unwrap_or(0);
+                return q.clamp(-(1i64 << 47), 1i64 << 47);
             }
-            (c << shift)
-                .checked_div_euclid(plane.den)
+            (i128::from(c) << shift)
+                .checked_div_euclid(i128::from(plane.den))
                 .unwrap_or(0)
                 .clamp(-limit, limit) as i64
         };
@@ -144,10 +142,27 @@ impl DepthPlane {
         Some(plane)
     }
 
-    /// Nearness at a point in half sub-pixel units, rounded down, clamped to the
-    /// range of the face's vertices.
+    /// Nearness at a point in half sub-pixel units, clamped to the range of the
+    /// face's vertices: from the fast form (multiplies and a shift, no division),
+    /// within `2^-(31 + STEP_BITS)` per pixel of distance of the exact plane.
     pub fn at(&self, x: i64, y: i64) -> u32 {
-        let q = self.plane_at(x, y) << STEP_BITS;
+        let centre = |k: i64| (2 * k + 1) << self.s;
+        let (dx, dy) = (x - centre(self.i0), y - centre(self.j0));
+        let shift = self.s + 1;
+        let q = match self
+            .dq_dx
+            .checked_mul(dx)
+            .zip(self.dq_dy.checked_mul(dy))
+            .and_then(|(u, v)| u.checked_add(v))
+        {
+            Some(n) => self.q_ref.saturating_add(n >> shift),
+            None => {
+                let n = i128::from(self.dq_dx) * i128::from(dx)
+                    + i128::from(self.dq_dy) * i128::from(dy);
+                let q = i128::from(self.q_ref) + (n >> shift);
+                q.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64
+            }
+        };
         (q.clamp(self.q_min, self.q_max) >> STEP_BITS) as u32
     }
 
@@ -155,21 +170,16 @@ impl DepthPlane {
     fn plane_at(&self, x: i64, y: i64) -> i64 {
         let (dx, dy) = (x - self.x0, y - self.y0);
         // 64-bit when it fits, as in `new`.
-        if let (Ok(a), Ok(b), Ok(den)) = (
-            i64::try_from(self.a),
-            i64::try_from(self.b),
-            i64::try_from(self.den),
-        ) {
-            if let Some(n) = a
-                .checked_mul(dx)
-                .zip(b.checked_mul(dy))
-                .and_then(|(u, v)| u.checked_add(v))
-            {
-                return self.q0 + n.checked_div_euclid(den).unwrap_or(0);
-            }
+        if let Some(n) = self
+            .a
+            .checked_mul(dx)
+            .zip(self.b.checked_mul(dy))
+            .and_then(|(u, v)| u.checked_add(v))
+        {
+            return self.q0 + n.checked_div_euclid(self.den).unwrap_or(0);
         }
-        let n = self.a * i128::from(dx) + self.b * i128::from(dy);
-        let q = i128::from(self.q0) + n.checked_div_euclid(self.den).unwrap_or(0);
+        let n = i128::from(self.a) * i128::from(dx) + i128::from(self.b) * i128::from(dy);
+        let q = i128::from(self.q0) + n.checked_div_euclid(i128::from(self.den)).unwrap_or(0);
         q.clamp(-(1 << 40), 1 << 40) as i64
     }
 

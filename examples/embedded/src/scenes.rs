@@ -9,16 +9,15 @@ use fixed::types::extra::U4;
 use pbuffer::mesh::{EdgeAdjacency, Mesh};
 use pbuffer::render::{ClipVertex, ProjectedVertex, ScreenVertex};
 use pbuffer::{
-    Camera, Cull, DrawMode, Error, MonoPalette, Pattern, Projection, Settings, SpanSink, Stats,
-    Workspace, ZBufferRenderer,
+    Camera, CodeFillRenderer, CodeWorkspace, Cull, DrawMode, Error, MonoPalette, Pattern,
+    Projection, Settings, SpanSink, Stats,
 };
 
-/// The engine every pbuffer example renders with: the banded Z-buffer + P-buffer
-/// renderer, S = 4 sub-pixel bits, 16 scan-converter edges, 16 clipped vertices.
-/// Switching engine is this line (and [`DepthSample`]).
-pub type Engine = ZBufferRenderer<U4, 16, 16>;
-/// Depth samples of the band buffer.
-pub type DepthSample = u16;
+/// The engine every pbuffer example renders with: the code-fill engine (no depth
+/// buffer), S = 4 sub-pixel bits, a 32-bit surface code (suzanne needs 9 bits),
+/// room for 128 faces and 384 edges active on one row (the suzanne frames need up
+/// to 258 edges) and 16 vertices per clipped face.
+pub type Engine = CodeFillRenderer<U4, 1, 128, 384, 16>;
 
 /// A perspective camera looking at `target`, `up` = +Y.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -174,12 +173,14 @@ pub const fn words(n: usize) -> usize {
     n.div_ceil(32)
 }
 
-/// The lent working memory of one scene: `V` vertices, `FW` face-bit words, `EW`
-/// edge-bit words, `ST` depth and id samples (width x (band + 2)), `LW` line words
-/// (2 x ceil(width / 32) x band). Zero-initialised, so a `static` of it is `.bss`.
+/// The lent working memory of one scene: `V` vertices, `F` faces (`FW` face-bit
+/// words), `EW` edge-bit words, `ST` id samples (width x (band + 2)), `LW` line
+/// words (2 x ceil(width / 32) x band). Zero-initialised, so a `static` of it is
+/// `.bss`.
 #[derive(Debug)]
 pub struct Buffers<
     const V: usize,
+    const F: usize,
     const FW: usize,
     const EW: usize,
     const ST: usize,
@@ -188,13 +189,19 @@ pub struct Buffers<
     pub vertices: [ProjectedVertex; V],
     pub drawn: [u32; FW],
     pub features: [u32; EW],
-    pub depth: [DepthSample; ST],
+    pub order: [u32; F],
     pub ids: [u16; ST],
     pub lines: [u32; LW],
 }
 
-impl<const V: usize, const FW: usize, const EW: usize, const ST: usize, const LW: usize>
-    Buffers<V, FW, EW, ST, LW>
+impl<
+        const V: usize,
+        const F: usize,
+        const FW: usize,
+        const EW: usize,
+        const ST: usize,
+        const LW: usize,
+    > Buffers<V, F, FW, EW, ST, LW>
 {
     /// All zero.
     pub const fn new() -> Self {
@@ -202,19 +209,19 @@ impl<const V: usize, const FW: usize, const EW: usize, const ST: usize, const LW
             vertices: [ZERO_VERTEX; V],
             drawn: [0; FW],
             features: [0; EW],
-            depth: [0; ST],
+            order: [0; F],
             ids: [0; ST],
             lines: [0; LW],
         }
     }
 
     /// The workspace the renderer borrows.
-    pub fn workspace(&mut self) -> Workspace<'_, DepthSample> {
-        Workspace {
+    pub fn workspace(&mut self) -> CodeWorkspace<'_> {
+        CodeWorkspace {
             vertices: &mut self.vertices,
             drawn: &mut self.drawn,
             features: &mut self.features,
-            depth: &mut self.depth,
+            order: &mut self.order,
             ids: &mut self.ids,
             lines: &mut self.lines,
         }
@@ -225,6 +232,7 @@ impl<const V: usize, const FW: usize, const EW: usize, const ST: usize, const LW
 /// 16-row bands.
 pub type SuzanneBuffers = Buffers<
     507,
+    500,
     { words(500) },
     { words(1024) },
     { suzanne::WIDTH * (suzanne::BAND + 2) },
@@ -233,6 +241,7 @@ pub type SuzanneBuffers = Buffers<
 /// Buffers for the panel part at 128 x 64 in 8-row bands.
 pub type PanelBuffers = Buffers<
     24,
+    16,
     1,
     { words(panel::EDGES) },
     { panel::WIDTH * (panel::BAND + 2) },
@@ -249,7 +258,7 @@ pub fn render<
     edges: &EdgeAdjacency<'_>,
     view: &View,
     mode: DrawMode,
-    ws: &mut Workspace<'_, DepthSample>,
+    ws: &mut CodeWorkspace<'_>,
     sink: &mut K,
 ) -> Result<Stats, Error> {
     let camera = view.camera()?;

@@ -1,0 +1,205 @@
+//! The code-fill engine against the Z-buffer engine on random scenes: the same frame,
+//! pixel for pixel (face ids, line masks and the packed picture). The code-fill
+//! engine resolves overlapping faces from their planes exactly as the Z-buffer
+//! receives them (face order, ties to the lower index), so no tolerance is owed.
+//! Scenes: random boxes (many interpenetrating), random triangle soups (open,
+//! crossing, coplanar pairs), random cameras from every side, perspective and
+//! orthographic, random sizes, sub-pixel bits, band heights and culling.
+
+use host_tests::frame::{
+    CameraSpec, CullSpec, EngineSpec, Frame, MeshData, ModeSpec, ProjectionSpec, RenderSpec,
+};
+use host_tests::pipeline::render_frame;
+use host_tests::random::Rng;
+use host_tests::shapes::{add_box, bounds};
+
+/// Random boxes, some inside others.
+fn boxes(rng: &mut Rng) -> MeshData {
+    let mut m = MeshData::default();
+    for _ in 0..1 + rng.below(6) {
+        let c = [
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+        ];
+        let h = [
+            rng.range(0.1, 0.8),
+            rng.range(0.1, 0.8),
+            rng.range(0.1, 0.8),
+        ];
+        add_box(&mut m, c, h, rng.range(-3.0, 3.0), rng.range(-3.0, 3.0));
+    }
+    m
+}
+
+/// A soup of random triangles and quads; some share a plane with the one before.
+fn soup(rng: &mut Rng) -> MeshData {
+    let mut m = MeshData::default();
+    let mut point = |rng: &mut Rng| {
+        [
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+        ]
+    };
+    for _ in 0..2 + rng.below(25) {
+        let base = m.vertices.len() as u32;
+        let n = if rng.chance(0.3) { 4 } else { 3 };
+        if n == 4 || m.vertices.len() < 3 || !rng.chance(0.2) {
+            let (a, b, c) = (point(rng), point(rng), point(rng));
+            m.vertices.extend([a, b, c]);
+            if n == 4 {
+                // Planar: the fourth vertex is a + c - b.
+                m.vertices
+                    .push([a[0] + c[0] - b[0], a[1] + c[1] - b[1], a[2] + c[2] - b[2]]);
+            }
+        } else {
+            // Coplanar with the previous triangle: affine combinations of its vertices.
+            let k = m.vertices.len();
+            let (a, b, c) = (m.vertices[k - 3], m.vertices[k - 2], m.vertices[k - 1]);
+            for _ in 0..3 {
+                let (u, v) = (rng.range(-0.5, 1.0), rng.range(-0.5, 1.0));
+                m.vertices
+                    .push([0, 1, 2].map(|i| a[i] + u * (b[i] - a[i]) + v * (c[i] - a[i])));
+            }
+        }
+        m.faces.push((base..base + n).collect());
+    }
+    m
+}
+
+fn camera(rng: &mut Rng, mesh: &MeshData, w: usize, h: usize) -> CameraSpec {
+    let (c, r) = bounds(mesh);
+    let dir = loop {
+        let d = [
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+        ];
+        let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        // Not along the up vector (a degenerate look-at).
+        if len > 0.2 && (d[1] / len).abs() < 0.95 {
+            break d.map(|x| x / len);
+        }
+    };
+    let dist = r * rng.range(1.2, 4.0);
+    let projection = if rng.chance(0.3) {
+        ProjectionSpec::Orthographic {
+            half_height: r * rng.range(0.5, 1.5) * (h as f64 / w as f64).max(1.0),
+        }
+    } else {
+        ProjectionSpec::Perspective {
+            fov_deg: rng.range(20.0, 90.0),
+        }
+    };
+    CameraSpec {
+        eye: [0, 1, 2].map(|i| c[i] + dir[i] * dist),
+        target: [0, 1, 2].map(|i| c[i] + rng.range(-0.3, 0.3) * r),
+        up: [0.0, 1.0, 0.0],
+        projection,
+        // Sometimes the near plane cuts the scene.
+        near: if rng.chance(0.3) { dist * 0.8 } else { 0.05 },
+        far: dist + 3.0 * r,
+    }
+}
+
+fn differing(a: &Frame, b: &Frame) -> (usize, usize, usize) {
+    let ids = a.ids.iter().zip(&b.ids).filter(|(x, y)| x != y).count();
+    let lines = a.lines.iter().zip(&b.lines).filter(|(x, y)| x != y).count();
+    let bytes = a
+        .packed
+        .iter()
+        .zip(&b.packed)
+        .filter(|(x, y)| x != y)
+        .count();
+    (ids, lines, bytes)
+}
+
+#[test]
+fn code_fill_draws_the_z_buffer_frame_on_random_scenes() {
+    let mut rng = Rng::new(0x5eed_c0de);
+    let mut failures = Vec::new();
+    let (mut scenes, mut covered, mut widest) = (0, 0usize, 0u64);
+    for k in 0..300 {
+        let mesh = if k % 2 == 0 {
+            boxes(&mut rng)
+        } else {
+            soup(&mut rng)
+        };
+        let (w, h) = (8 + rng.below(300) as usize, 8 + rng.below(200) as usize);
+        let cam = camera(&mut rng, &mesh, w, h);
+        let spec = RenderSpec {
+            width: w,
+            height: h,
+            subpixel: rng.below(9) as u32,
+            band: if rng.chance(0.5) {
+                h
+            } else {
+                1 + rng.below(h as u64) as usize
+            },
+            cull: *[CullSpec::On, CullSpec::Off, CullSpec::Auto]
+                .get(rng.below(3) as usize)
+                .unwrap(),
+            mode: if rng.chance(0.5) {
+                ModeSpec::Dashed
+            } else {
+                ModeSpec::SurfacesDashed
+            },
+            depth_bits: 32,
+            ..RenderSpec::default()
+        };
+        let z = render_frame(
+            &mesh,
+            &cam,
+            &RenderSpec {
+                engine: EngineSpec::ZBuffer,
+                ..spec.clone()
+            },
+        );
+        let c = render_frame(
+            &mesh,
+            &cam,
+            &RenderSpec {
+                engine: EngineSpec::CodeFill,
+                ..spec.clone()
+            },
+        );
+        match (z, c) {
+            (Ok(z), Ok(c)) => {
+                scenes += 1;
+                covered += z.ids.iter().filter(|&&id| id != 0).count();
+                widest = widest.max(
+                    c.stats
+                        .iter()
+                        .find(|s| s.0 == "code_bits")
+                        .map_or(0, |s| s.1),
+                );
+                let d = differing(&z, &c);
+                if d != (0, 0, 0) {
+                    failures.push(format!(
+                        "scene {k} ({w}x{h}, S {}, band {}, {:?}): {} ids, {} line pixels, {} bytes differ",
+                        spec.subpixel, spec.band, spec.cull, d.0, d.1, d.2
+                    ));
+                }
+            }
+            (Err(a), Err(b)) if a == b => {}
+            (z, c) => failures.push(format!(
+                "scene {k}: the engines disagree on failing: {:?} / {:?}",
+                z.err(),
+                c.err()
+            )),
+        }
+    }
+    println!("{scenes} scenes, {covered} face pixels, widest code {widest} bits");
+    assert!(scenes >= 290, "only {scenes} scenes rendered");
+    assert!(
+        covered > 500_000,
+        "the scenes cover too little: {covered} pixels"
+    );
+    assert!(
+        failures.is_empty(),
+        "{} failures:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
