@@ -106,7 +106,7 @@ impl<const N: usize> ActiveEdges<N> {
 
     /// Moves the crossings to row `y` (edges that have begun) and restores the
     /// order: an insertion sort, since the order changes little between rows.
-    pub fn to_row(&mut self, y: i32, s: u32, width: u16) {
+    pub fn move_to_row(&mut self, y: i32, s: u32, width: u16) {
         for &i in self.by_x.iter() {
             if let Some(e) = self.slots.get_mut(usize::from(i)) {
                 if e.edge.first <= y {

@@ -370,7 +370,7 @@ impl<
         self.peak_edges = self.peak_edges.max(self.edges.len());
         let width = out.len() as u16;
         let row = i32::from(y);
-        self.edges.to_row(row, ctx.s, width);
+        self.edges.move_to_row(row, ctx.s, width);
         self.code = [0; WORDS];
         self.inside = 0;
         let (mut xa, mut runs) = (0u16, 0u32);
