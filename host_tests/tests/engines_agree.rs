@@ -35,7 +35,7 @@ fn boxes(rng: &mut Rng) -> MeshData {
 /// A soup of random triangles and quads; some share a plane with the one before.
 fn soup(rng: &mut Rng) -> MeshData {
     let mut m = MeshData::default();
-    let mut point = |rng: &mut Rng| {
+    let point = |rng: &mut Rng| {
         [
             rng.range(-1.0, 1.0),
             rng.range(-1.0, 1.0),
