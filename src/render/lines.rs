@@ -8,6 +8,7 @@ use super::transform::{ProjectedVertex, ScreenVertex};
 use super::zband::{DepthPlane, IdBand};
 use super::{bit, face_polygon, FrameCtx, Settings};
 use crate::mesh::{face_owns_edge, EdgeAdjacency, EdgeKind, Mesh, MeshEdge};
+use crate::scan::edge::div_rem_euclid;
 
 /// Visible and hidden line pixels of one band, bit-packed: bit `k` of word `w` of a
 /// row is pixel `32w + k`.
@@ -166,11 +167,13 @@ struct Stepper {
 impl Stepper {
     fn new(n: i64, d: i64, step: i64) -> Self {
         let d = d.max(1);
+        let ((quotient, remainder), (step_q, step_r)) =
+            (div_rem_euclid(n, d), div_rem_euclid(step, d));
         Self {
-            quotient: n.div_euclid(d),
-            remainder: n.rem_euclid(d),
-            step_q: step.div_euclid(d),
-            step_r: step.rem_euclid(d),
+            quotient,
+            remainder,
+            step_q,
+            step_r,
             d,
         }
     }
@@ -243,6 +246,12 @@ pub(crate) fn line_pass<const POLY: usize>(
         let Some((a, b)) = edge_on_screen(ctx, vertices, edge) else {
             continue;
         };
+        // Most edges miss a band: rejected before the walk's divisions (a long
+        // library call each on a Cortex-M4).
+        let (lo, hi) = (a.y.min(b.y) >> ctx.s, a.y.max(b.y) >> ctx.s);
+        if hi < i32::from(band.top) || lo >= i32::from(band.top + band.rows) {
+            continue;
+        }
         let rows = band.top..band.top + band.rows;
         walk_segment(&a, &b, ctx.s, ctx.viewport.width, rows, |px| {
             let hidden = hide && hidden(ctx, vertices, drawn, edge, band, &px, &mut cache);

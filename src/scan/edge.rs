@@ -110,7 +110,7 @@ impl EdgeLine {
 /// Floor quotient and non-negative remainder for `d > 0`; in 32 bits when both
 /// operands fit (one hardware divide on a Cortex-M4 instead of a 64-bit library call).
 #[inline]
-fn div_rem_euclid(n: i64, d: i64) -> (i64, i64) {
+pub(crate) fn div_rem_euclid(n: i64, d: i64) -> (i64, i64) {
     if let (Ok(n32), Ok(d32)) = (i32::try_from(n), i32::try_from(d)) {
         let (q, r) = (
             n32.checked_div_euclid(d32).unwrap_or(0),
