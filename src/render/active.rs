@@ -130,19 +130,24 @@ impl<const N: usize> ActiveEdges<N> {
     /// Steps the edges that have begun past row `next - 1` and drops those that end
     /// there.
     pub fn step(&mut self, next: i32) {
-        let (slots, free) = (&mut self.slots, &mut self.free);
-        self.by_x.retain(|&i| {
-            let Some(e) = slots.get_mut(usize::from(i)) else {
-                return false;
+        // Compacted in place (a library `retain` copies element by element through
+        // a call on a Cortex-M4).
+        let mut kept = 0;
+        for k in 0..self.by_x.len() {
+            let i = self.by_x[k];
+            let Some(e) = self.slots.get_mut(usize::from(i)) else {
+                continue;
             };
             if e.edge.end <= next {
-                let _ = free.push(i);
-                return false;
+                let _ = self.free.push(i);
+                continue;
             }
             if e.edge.first < next {
                 e.edge.step();
             }
-            true
-        });
+            self.by_x[kept] = i;
+            kept += 1;
+        }
+        self.by_x.truncate(kept);
     }
 }

@@ -371,22 +371,30 @@ fn hidden<const POLY: usize>(
         if own(id) {
             return false;
         }
+        // A face covering the pixel centre contains an edge point at the centre; a
+        // triangle (convex, clipped or not) covering both centres contains the edge
+        // point between them. Otherwise the polygon is tested.
+        let f = usize::from(id - 1);
+        let sure = id == nearest && (beside.is_none() || (beside == Some(id) && ctx.mesh.face(f).len() == 3));
         let (_, poly, plane) = cache.get(ctx, vertices, drawn, id);
-        let Some(plane) = *plane else { continue };
-        if polygon_contains(poly, px.px, px.py) {
-            return nearer(&plane, px, REACH_COVERING);
+        let Some(plane) = plane.as_ref() else { continue };
+        if sure || polygon_contains(poly, px.px, px.py) {
+            return nearer(plane, px, REACH_COVERING);
         }
         // Only the face at the pixel centre is extended to the point; a neighbour
         // counts only where it covers the point.
         if id == nearest {
-            extended = Some((plane, id));
+            extended = Some(id);
         }
     }
     match extended {
         // Extended to the point and sharing a vertex with the edge, it cannot say:
         // beside a vertex every incident face passes close to the edge.
-        Some((plane, id)) if !touches(ctx.mesh, edge, usize::from(id - 1)) => {
-            nearer(&plane, px, REACH_EXTENDED)
+        Some(id) if !touches(ctx.mesh, edge, usize::from(id - 1)) => {
+            let (_, _, plane) = cache.get(ctx, vertices, drawn, id);
+            plane
+                .as_ref()
+                .is_some_and(|plane| nearer(plane, px, REACH_EXTENDED))
         }
         _ => false,
     }
