@@ -101,7 +101,16 @@ impl<const N: usize> ActiveEdges<N> {
         let at = self
             .by_x
             .partition_point(|&i| slots.get(usize::from(i)).is_some_and(|e| e.x <= x));
-        self.by_x.insert(at, slot).map_err(|_| ())
+        self.by_x.push(slot).map_err(|_| ())?;
+        // Shifted element by element: a library `memmove` of overlapping `u16`s
+        // copies byte by byte backwards on a Cortex-M4.
+        for j in (at + 1..self.by_x.len()).rev() {
+            self.by_x[j] = self.by_x[j - 1];
+        }
+        if let Some(place) = self.by_x.get_mut(at) {
+            *place = slot;
+        }
+        Ok(())
     }
 
     /// Moves the crossings to row `y` (edges that have begun) and restores the

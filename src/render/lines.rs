@@ -98,8 +98,9 @@ pub(crate) fn walk_segment(
     };
     let (du, dv, dq) = (u1 - u0, v1 - v0, i64::from(q1) - i64::from(q0));
     // Pixel centres (2k+1)h in [u0, u1].
-    let k_first = (u0 - h + p - 1).div_euclid(p);
-    let k_last = (u1 - h).div_euclid(p);
+    // Floor divisions by the pixel size 2^(S+1) are shifts.
+    let k_first = (u0 - h + p - 1) >> (s + 1);
+    let k_last = (u1 - h) >> (s + 1);
     let (limit_u, limit_v) = if x_major {
         (
             i64::from(width),
@@ -115,11 +116,11 @@ pub(crate) fn walk_segment(
     }
     // For an x-major edge, narrow the columns to those whose row can be in the band.
     if x_major && dv != 0 {
-        let at = |v: i64| u0 + (v - v0) * du / dv;
+        let at = |v: i64| u0 + quotient((v - v0) * du, dv);
         let (ua, ub) = (at(limit_v.0 * p), at(limit_v.1 * p));
         let (lo, hi) = (ua.min(ub), ua.max(ub));
-        k_lo = k_lo.max((lo - h).div_euclid(p) - 1);
-        k_hi = k_hi.min((hi - h).div_euclid(p) + 1);
+        k_lo = k_lo.max(((lo - h) >> (s + 1)) - 1);
+        k_hi = k_hi.min(((hi - h) >> (s + 1)) + 1);
     }
     if k_lo > k_hi {
         return;
@@ -151,6 +152,15 @@ pub(crate) fn walk_segment(
         v.advance();
         q.advance();
     }
+}
+
+/// `n / d` rounded toward zero (`d != 0`), in 32 bits when both fit: one hardware
+/// divide on a Cortex-M4 instead of a 64-bit library call.
+fn quotient(n: i64, d: i64) -> i64 {
+    if let (Ok(n32), Ok(d32)) = (i32::try_from(n), i32::try_from(d)) {
+        return i64::from(n32.checked_div(d32).unwrap_or(0));
+    }
+    n.checked_div(d).unwrap_or(0)
 }
 
 /// `floor(n / d)` for `n` growing by `step` each time, `d > 0`, kept as quotient
@@ -212,8 +222,11 @@ pub(crate) fn polygon_contains(poly: &[ScreenVertex], x: i64, y: i64) -> bool {
         } else {
             (bx, by, ax, ay)
         };
-        let cross =
-            i128::from(hx - lx) * i128::from(y - ly) - i128::from(hy - ly) * i128::from(x - lx);
+        // Inside the guard band every difference is below 2^28 half-units: the
+        // products fit 64 bits (wrapping ops only spare the overflow checks).
+        let cross = (hx - lx)
+            .wrapping_mul(y - ly)
+            .wrapping_sub((hy - ly).wrapping_mul(x - lx));
         if cross == 0 {
             return true;
         }
