@@ -36,8 +36,26 @@ pub(crate) struct ActiveEdges<const N: usize> {
     /// Slots never used since `clear`, from `fresh` on; released slots in `free`.
     fresh: usize,
     free: Vec<u16, N>,
-    /// Slots in use, by crossing.
+    /// Slots in use, by crossing: the first `sorted` in order, the rest added since.
     by_x: Vec<u16, N>,
+    sorted: usize,
+}
+
+/// Edges added on one row that are merged into the order (more are sorted in).
+const MERGE: usize = 64;
+
+/// Insertion sort of slot numbers by `key`.
+fn insertion_sort(slots: &mut [u16], key: impl Fn(u16) -> u16) {
+    for k in 1..slots.len() {
+        let moving = slots[k];
+        let x = key(moving);
+        let mut j = k;
+        while j > 0 && key(slots[j - 1]) > x {
+            slots[j] = slots[j - 1];
+            j -= 1;
+        }
+        slots[j] = moving;
+    }
 }
 
 impl<const N: usize> ActiveEdges<N> {
@@ -48,6 +66,7 @@ impl<const N: usize> ActiveEdges<N> {
             fresh: 0,
             free: Vec::new(),
             by_x: Vec::new(),
+            sorted: 0,
         }
     }
 
@@ -56,6 +75,7 @@ impl<const N: usize> ActiveEdges<N> {
         self.fresh = 0;
         self.free.clear();
         self.by_x.clear();
+        self.sorted = 0;
     }
 
     /// Edges held.
@@ -77,8 +97,8 @@ impl<const N: usize> ActiveEdges<N> {
             .and_then(|&i| self.slots.get_mut(usize::from(i)))
     }
 
-    /// Adds `edge` of face `face` (DDA at its first row) at its place; `Err` when
-    /// full.
+    /// Adds `edge` of face `face` (DDA at its first row); it takes its place at the
+    /// next `move_to_row`. `Err` when full.
     pub fn insert(&mut self, edge: Edge, face: u16, s: u32, width: u16) -> Result<(), ()> {
         let slot = match self.free.pop() {
             Some(slot) => slot,
@@ -97,20 +117,8 @@ impl<const N: usize> ActiveEdges<N> {
                 mark: false,
             };
         }
-        let slots = &self.slots;
-        let at = self
-            .by_x
-            .partition_point(|&i| slots.get(usize::from(i)).is_some_and(|e| e.x <= x));
-        self.by_x.push(slot).map_err(|_| ())?;
-        // Shifted element by element: a library `memmove` of overlapping `u16`s
-        // copies byte by byte backwards on a Cortex-M4.
-        for j in (at + 1..self.by_x.len()).rev() {
-            self.by_x[j] = self.by_x[j - 1];
-        }
-        if let Some(place) = self.by_x.get_mut(at) {
-            *place = slot;
-        }
-        Ok(())
+        // Merged into the order once per row, by `move_to_row`.
+        self.by_x.push(slot).map_err(|_| ())
     }
 
     /// Moves the crossings to row `y` (edges that have begun) and restores the
@@ -124,16 +132,35 @@ impl<const N: usize> ActiveEdges<N> {
             }
         }
         let key = |i: u16| self.slots.get(usize::from(i)).map_or(0, |e| e.x);
-        for k in 1..self.by_x.len() {
-            let moving = self.by_x[k];
-            let x = key(moving);
-            let mut j = k;
-            while j > 0 && key(self.by_x[j - 1]) > x {
-                self.by_x[j] = self.by_x[j - 1];
-                j -= 1;
+        let len = self.by_x.len();
+        let old = self.sorted.min(len);
+        // The edges held before: nearly in order, an insertion sort.
+        insertion_sort(&mut self.by_x[..old], key);
+        // The edges added since, sorted apart and merged from the back: each edge
+        // held moves once, not once per edge added.
+        let mut added = [0u16; MERGE];
+        match self.by_x.get(old..).filter(|tail| tail.len() <= MERGE) {
+            Some(tail) => {
+                let added = &mut added[..tail.len()];
+                added.copy_from_slice(tail);
+                insertion_sort(added, key);
+                let (mut i, mut j) = (old, added.len());
+                for w in (0..len).rev() {
+                    if j == 0 {
+                        break;
+                    }
+                    if i > 0 && key(self.by_x[i - 1]) > key(added[j - 1]) {
+                        self.by_x[w] = self.by_x[i - 1];
+                        i -= 1;
+                    } else {
+                        self.by_x[w] = added[j - 1];
+                        j -= 1;
+                    }
+                }
             }
-            self.by_x[j] = moving;
+            None => insertion_sort(&mut self.by_x, key),
         }
+        self.sorted = len;
     }
 
     /// Steps the edges that have begun past row `next - 1` and drops those that end
@@ -158,5 +185,6 @@ impl<const N: usize> ActiveEdges<N> {
             kept += 1;
         }
         self.by_x.truncate(kept);
+        self.sorted = kept;
     }
 }
