@@ -80,13 +80,13 @@ fn print(name: &str, n: u32, bytes: &[u8]) -> u32 {
 /// The engine examples, the painter and the plain f32 baseline on one scene, exactly
 /// as the firmware binaries run them (buffer sizes included).
 macro_rules! run_scene {
-    ($s:expr, $w:expr, $h:expr, $buffers:ty, $v:expr, $f:expr, [$(($example:expr, $mode:expr)),*]) => {{
+    ($s:expr, $w:expr, $h:expr, $engine:ty, $buffers:ty, $v:expr, $f:expr, [$(($example:expr, $mode:expr)),*]) => {{
         const N: usize = packed_len($w, $h);
         let s: &Scene = $s;
         let mesh = Mesh::new(&s.vertices, &s.indices, &s.offsets).expect("mesh");
         let mut store = vec![MeshEdge::EMPTY; s.indices.len()];
         let adjacency = edges(&mesh, &mut store);
-        let mut engine = Box::new(scenes::Engine::new());
+        let mut engine = Box::new(<$engine>::new());
         $(
             let mut b = Box::new(<$buffers>::new());
             for n in 0..s.frames {
@@ -156,6 +156,7 @@ fn firmware_example_frames() {
                 &suz,
                 400,
                 240,
+                scenes::Engine,
                 scenes::SuzanneBuffers,
                 507,
                 500,
@@ -168,6 +169,7 @@ fn firmware_example_frames() {
                 &pan,
                 128,
                 64,
+                scenes::PanelEngine,
                 scenes::PanelBuffers,
                 24,
                 16,

@@ -18,6 +18,8 @@ use pbuffer::{
 /// room for 128 faces and 384 edges active on one row (the suzanne frames need up
 /// to 258 edges) and 16 vertices per clipped face.
 pub type Engine = CodeFillRenderer<U4, 1, 128, 384, 16>;
+/// The panel's engine: the same, with room for the bracket's 16 faces and 64 edges.
+pub type PanelEngine = CodeFillRenderer<U4, 1, 16, 64, 16>;
 
 /// A perspective camera looking at `target`, `up` = +Y.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -252,8 +254,10 @@ pub type PanelBuffers = Buffers<
 /// `mode` with culling on for closed meshes and the paper's pattern.
 pub fn render<
     K: SpanSink<Color = embedded_graphics::pixelcolor::BinaryColor, Error = Infallible>,
+    const FACES: usize,
+    const EDGES: usize,
 >(
-    engine: &mut Engine,
+    engine: &mut CodeFillRenderer<U4, 1, FACES, EDGES, 16>,
     mesh: &Mesh<'_>,
     edges: &EdgeAdjacency<'_>,
     view: &View,

@@ -11,7 +11,7 @@ use panic_semihosting as _;
 use pbuffer::mesh::{Mesh, MeshEdge};
 use pbuffer::{packed_len, DrawMode, PackedFramebuffer};
 use pbuffer_examples::fw;
-use pbuffer_examples::scenes::{self, fnv1a64, panel as scene, Engine, PanelBuffers};
+use pbuffer_examples::scenes::{self, fnv1a64, panel as scene, PanelBuffers, PanelEngine};
 
 const NAME: &str = "panel";
 type Fb = PackedFramebuffer<
@@ -23,7 +23,7 @@ type Fb = PackedFramebuffer<
 static mut FB: Fb = Fb::new();
 static mut BUFFERS: PanelBuffers = PanelBuffers::new();
 static mut EDGES: [MeshEdge; scene::EDGES] = [MeshEdge::EMPTY; scene::EDGES];
-static mut ENGINE: Engine = Engine::new();
+static mut ENGINE: PanelEngine = PanelEngine::new();
 
 #[entry]
 fn main() -> ! {
