@@ -388,9 +388,12 @@ fn hidden<const POLY: usize>(
         // triangle (convex, clipped or not) covering both centres contains the edge
         // point between them. Otherwise the polygon is tested.
         let f = usize::from(id - 1);
-        let sure = id == nearest && (beside.is_none() || (beside == Some(id) && ctx.mesh.face(f).len() == 3));
+        let sure = id == nearest
+            && (beside.is_none() || (beside == Some(id) && ctx.mesh.face(f).len() == 3));
         let (_, poly, plane) = cache.get(ctx, vertices, drawn, id);
-        let Some(plane) = plane.as_ref() else { continue };
+        let Some(plane) = plane.as_ref() else {
+            continue;
+        };
         if sure || polygon_contains(poly, px.px, px.py) {
             return nearer(plane, px, REACH_COVERING);
         }
