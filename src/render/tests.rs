@@ -265,3 +265,91 @@ fn sin(x: f32) -> f32 {
     }
     s
 }
+
+/// `n` unit squares stacked along z (z = 0, -0.1, ...), all facing +z.
+fn stack(n: u32) -> (Vec<[f32; 3]>, Vec<u32>, Vec<u32>) {
+    let mut v = Vec::new();
+    for k in 0..n {
+        let z = -0.1 * k as f32;
+        v.extend([[-1., -1., z], [1., -1., z], [1., 1., z], [-1., 1., z]]);
+    }
+    (v, (0..4 * n).collect(), (0..=n).map(|f| 4 * f).collect())
+}
+
+/// Renders `mesh` head-on at 96x64 with the code-fill engine of `WORDS` code words.
+fn code_fill<const WORDS: usize, const EDGES: usize>(mesh: &Mesh<'_>) -> Result<Stats, Error> {
+    let mut weld = vec![0u32; mesh.vertices().len()];
+    let mut scratch = vec![HalfEdgeRecord::default(); mesh.indices().len()];
+    let mut store = vec![MeshEdge::default(); mesh.indices().len()];
+    let adj = EdgeAdjacency::build(mesh, 30.0, &mut weld, &mut scratch, &mut store).unwrap();
+    let projection = Projection::Perspective { fov_y_deg: 40.0 };
+    let camera = Camera::new(
+        [0.2, 0.1, 6.0],
+        [0.0; 3],
+        [0.0, 1.0, 0.0],
+        projection,
+        0.5,
+        20.0,
+    )
+    .unwrap();
+    let mut fb = PackedFramebuffer::<96, 64, { crate::packed_len(96, 64) }>::new();
+    let mut vertices = vec![ProjectedVertex::default(); mesh.vertices().len()];
+    let mut drawn = vec![0u32; mesh.face_count().div_ceil(32)];
+    let mut features = vec![0u32; adj.edges().len().div_ceil(32)];
+    let mut order = vec![0u32; mesh.face_count()];
+    let mut ids = vec![0u16; 96 * 10];
+    let mut lines = vec![0u32; 2 * 3 * 8];
+    let mut ws = CodeWorkspace {
+        vertices: &mut vertices,
+        drawn: &mut drawn,
+        features: &mut features,
+        order: &mut order,
+        ids: &mut ids,
+        lines: &mut lines,
+    };
+    let settings = Settings::default();
+    CodeFillRenderer::<U4, WORDS, 64, EDGES, 16>::new().render(
+        mesh,
+        &adj,
+        &camera,
+        &settings,
+        &mut ws,
+        &MonoPalette::default(),
+        &mut fb,
+        &mut (),
+    )
+}
+
+#[test]
+fn a_code_wider_than_compiled_is_an_error_with_the_width_needed() {
+    let (v, idx, off) = stack(40);
+    let mesh = Mesh::new(&v, &idx, &off).unwrap();
+    // 40 squares over the frame's centre: a 32-bit code is too narrow, 64 bits do.
+    assert_eq!(
+        code_fill::<1, 256>(&mesh),
+        Err(Error::CodeTooWide {
+            needed: 40,
+            capacity: 32
+        })
+    );
+    let stats = code_fill::<2, 256>(&mesh).unwrap();
+    assert_eq!(stats.code_bits, 40);
+    assert_eq!(stats.peak_faces, 40);
+}
+
+#[test]
+fn too_many_active_edges_is_an_error_not_a_truncated_frame() {
+    let (v, idx, off) = stack(40);
+    let mesh = Mesh::new(&v, &idx, &off).unwrap();
+    // Each square's four edges join the active edges when it starts (none is quite
+    // horizontal in this view): up to 160.
+    match code_fill::<2, 64>(&mesh) {
+        Err(Error::CapacityExceeded { needed, capacity }) => {
+            assert_eq!(capacity, 64);
+            assert!(needed > 64, "needed {needed}");
+        }
+        other => panic!("expected CapacityExceeded, got {other:?}"),
+    }
+    let peak = code_fill::<2, 160>(&mesh).unwrap().peak_edges;
+    assert!((81..=160).contains(&peak), "peak {peak}");
+}
