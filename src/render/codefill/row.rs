@@ -1,0 +1,221 @@
+//! The row scan of the code-fill engine: faces activated at their first row, the
+//! crossings of the row taken in order, each toggling its face in the surface code.
+
+use heapless::Vec;
+
+use fixed::types::extra::LeEqU32;
+
+use super::{ActiveFace, CodeFillRenderer, NO_BIT, OVER};
+use crate::render::active::ActiveEdge;
+use crate::render::transform::{ProjectedVertex, ScreenVertex};
+use crate::render::zband::DepthPlane;
+use crate::render::{face_polygon, FrameCtx};
+use crate::scan::edge::{Edge, EdgeLine};
+use crate::scan::RowRange;
+use crate::Error;
+
+impl<
+        Frac: LeEqU32,
+        const WORDS: usize,
+        const FACES: usize,
+        const EDGES: usize,
+        const POLY: usize,
+    > CodeFillRenderer<Frac, WORDS, FACES, EDGES, POLY>
+{
+    /// Fills `out` with the face ids of row `y` (rows come in order); returns the
+    /// runs of one face resolved.
+    pub(super) fn scan_row(
+        &mut self,
+        ctx: &FrameCtx<'_, '_>,
+        vertices: &[ProjectedVertex],
+        order: &[u32],
+        y: u16,
+        out: &mut [u16],
+    ) -> Result<u32, Error> {
+        // Rows are scanned in order; a gap (none in practice) is walked through.
+        while self.row < y {
+            self.activate(ctx, vertices, order, self.row)?;
+            self.step_row();
+        }
+        self.activate(ctx, vertices, order, y)?;
+        self.peak_faces = self.peak_faces.max(self.live.len());
+        self.peak_edges = self.peak_edges.max(self.edges.len());
+        let width = out.len() as u16;
+        let row = i32::from(y);
+        self.edges.move_to_row(row, ctx.s, width);
+        self.code = [0; WORDS];
+        self.inside = 0;
+        let (mut xa, mut runs) = (0u16, 0u32);
+        let mut k = 0;
+        while let Some(&ActiveEdge { x, .. }) = self.edges.get(k) {
+            // The edges crossing at x (edges not begun yet only hold their place).
+            let mut end = k;
+            while self.edges.get(end).is_some_and(|e| e.x == x) {
+                end += 1;
+            }
+            let live = |e: &ActiveEdge| e.edge.first <= row;
+            if (k..end).any(|j| self.edges.get(j).is_some_and(live)) {
+                if x != xa {
+                    runs += self.resolve(xa, x, out);
+                    xa = x;
+                }
+                // Faces leaving first, so that one entering at the same place can
+                // take the bit: the code is then as wide as the most faces over one
+                // pixel.
+                for j in k..end {
+                    let Some(&e) = self.edges.get(j) else { break };
+                    let inside = self
+                        .faces
+                        .get(usize::from(e.face))
+                        .is_some_and(|f| f.bit != NO_BIT);
+                    if live(&e) && inside {
+                        self.toggle(usize::from(e.face));
+                        if let Some(e) = self.edges.get_mut(j) {
+                            e.mark = true;
+                        }
+                    }
+                }
+                for j in k..end {
+                    let Some(e) = self.edges.get_mut(j) else {
+                        break;
+                    };
+                    let (face, enter) = (e.face, live(e) && !e.mark);
+                    e.mark = false;
+                    if enter {
+                        self.toggle(usize::from(face));
+                    }
+                }
+            }
+            k = end.max(k + 1);
+        }
+        if xa < width {
+            runs += self.resolve(xa, width, out);
+        }
+        self.step_row();
+        Ok(runs)
+    }
+
+    /// Face `f` enters or leaves at the current crossing.
+    pub(super) fn toggle(&mut self, f: usize) {
+        let Some(face) = self.faces.get_mut(f) else {
+            return;
+        };
+        if face.bit == NO_BIT {
+            let free = self
+                .code
+                .iter()
+                .enumerate()
+                .find(|(_, w)| **w != u32::MAX)
+                .map(|(k, w)| (k, w.trailing_ones() as usize));
+            face.bit = match free {
+                Some((k, b)) => {
+                    self.code[k] |= 1 << b;
+                    self.owner[k][b] = f as u16;
+                    (32 * k + b) as u16
+                }
+                None => OVER,
+            };
+            self.inside += 1;
+            self.widest = self.widest.max(self.inside);
+        } else {
+            if let Some(word) = self.code.get_mut(usize::from(face.bit / 32)) {
+                *word &= !(1 << (face.bit % 32));
+            }
+            face.bit = NO_BIT;
+            self.inside -= 1;
+        }
+    }
+
+    /// Moves every active edge and face past the current row, dropping those that
+    /// end there.
+    pub(super) fn step_row(&mut self) {
+        let next = i32::from(self.row) + 1;
+        self.edges.step(next);
+        let mut k = 0;
+        while let Some(&f) = self.live.get(k) {
+            let Some(face) = self.faces.get_mut(usize::from(f)) else {
+                break;
+            };
+            // A face cut by the frame's right side can end a row inside.
+            face.bit = NO_BIT;
+            if face.end <= next {
+                self.live.swap_remove(k);
+                let _ = self.free.push(f);
+            } else {
+                face.plane.step();
+                k += 1;
+            }
+        }
+        self.row += 1;
+    }
+
+    /// Activates the faces whose first row is `y`: their edges join the active
+    /// edges.
+    pub(super) fn activate(
+        &mut self,
+        ctx: &FrameCtx<'_, '_>,
+        vertices: &[ProjectedVertex],
+        order: &[u32],
+        y: u16,
+    ) -> Result<(), Error> {
+        let mut poly: Vec<ScreenVertex, POLY> = Vec::new();
+        while let Some(&key) = order.get(self.next_face) {
+            if key >> 16 > u32::from(y) {
+                break;
+            }
+            self.next_face += 1;
+            let f = (key & 0xFFFF) as usize;
+            if !face_polygon(ctx, vertices, f, &mut poly)? {
+                continue;
+            }
+            let Some(plane) = DepthPlane::new(&poly, ctx.s) else {
+                continue;
+            };
+            let Some(&slot) = self.free.last() else {
+                return Err(Error::CapacityExceeded {
+                    needed: self.live.len() + 1,
+                    capacity: FACES,
+                });
+            };
+            let rows = RowRange {
+                first: i32::from(y),
+                end: i32::from(ctx.viewport.height),
+            };
+            let half = |v: &ScreenVertex| (2 * i64::from(v.x), 2 * i64::from(v.y));
+            let mut end = i32::from(y);
+            let mut added = 0;
+            for (a, b) in poly.iter().zip(poly.iter().cycle().skip(1)) {
+                let Some(line) = EdgeLine::new(half(a), half(b)) else {
+                    continue;
+                };
+                let Some(edge) = Edge::new(&line, line.clip(ctx.s, ctx.viewport, rows), ctx.s)
+                else {
+                    continue;
+                };
+                end = end.max(edge.end);
+                let width = ctx.viewport.width;
+                if self.edges.insert(edge, slot, ctx.s, width).is_err() {
+                    return Err(Error::CapacityExceeded {
+                        needed: self.edges.len() + poly.len() - added,
+                        capacity: EDGES,
+                    });
+                }
+                added += 1;
+            }
+            if added == 0 {
+                continue;
+            }
+            if let Some(face) = self.faces.get_mut(usize::from(slot)) {
+                *face = ActiveFace {
+                    id: (f + 1) as u16,
+                    bit: NO_BIT,
+                    end,
+                    plane: plane.row_plane(y),
+                };
+            }
+            self.free.pop();
+            let _ = self.live.push(slot);
+        }
+        Ok(())
+    }
+}
