@@ -21,7 +21,7 @@ use std::path::PathBuf;
 
 use fixed::types::extra::U4;
 use pbuffer::mesh::{EdgeAdjacency, Mesh};
-use pbuffer::render::{storage_rows, Depth, ProjectedVertex};
+use pbuffer::render::{storage_rows, Depth, ProjectedVertex, RowCodes};
 use pbuffer::{
     packed_len, Camera, CodeFillRenderer, CodeWorkspace, Error, MonoPalette, PackedFramebuffer,
     Settings, Stats, Workspace, ZBufferRenderer,
@@ -62,6 +62,8 @@ const FACE_EDGES: usize = 64;
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 pub enum Engine {
     CodeFill,
+    /// The code-fill engine with bit-sliced rows (`RowCodes::BitSliced`).
+    CodeFillSliced,
     ZBuffer16,
     ZBuffer32,
     /// The f32 baseline of `crate::baseline` (always full frame).
@@ -77,10 +79,12 @@ pub struct Renderer {
 
 impl Renderer {
     /// The rows of each table, in order; the last is the baseline.
-    pub const ALL: [Renderer; 6] = [
+    pub const ALL: [Renderer; 8] = [
         Renderer::new(Engine::CodeFill, None),
         Renderer::new(Engine::CodeFill, Some(8)),
         Renderer::new(Engine::CodeFill, Some(32)),
+        Renderer::new(Engine::CodeFillSliced, None),
+        Renderer::new(Engine::CodeFillSliced, Some(8)),
         Renderer::new(Engine::ZBuffer32, None),
         Renderer::new(Engine::ZBuffer16, Some(8)),
         Renderer::new(Engine::Baseline, None),
@@ -93,6 +97,7 @@ impl Renderer {
     fn key(self) -> String {
         let engine = match self.engine {
             Engine::CodeFill => "codefill",
+            Engine::CodeFillSliced => "codefill-sliced",
             Engine::ZBuffer16 => "zbuffer16",
             Engine::ZBuffer32 => "zbuffer32",
             Engine::Baseline => "baseline",
@@ -107,6 +112,9 @@ impl Renderer {
         let engine = match self.engine {
             Engine::CodeFill => format!(
                 "CodeFillRenderer<U4, {CODE_WORDS}, {ACTIVE_FACES}, {ACTIVE_EDGES}, {POLY}>"
+            ),
+            Engine::CodeFillSliced => format!(
+                "CodeFillRenderer<U4, {CODE_WORDS}, {ACTIVE_FACES}, {ACTIVE_EDGES}, {POLY}>, bit-sliced rows"
             ),
             Engine::ZBuffer16 => format!("ZBufferRenderer<U4, {FACE_EDGES}, {POLY}>, u16 depth"),
             Engine::ZBuffer32 => format!("ZBufferRenderer<U4, {FACE_EDGES}, {POLY}>, u32 depth"),
@@ -246,14 +254,15 @@ fn draw_sized<const W: usize, const H: usize, const N: usize>(
         settings: pipeline::settings(&spec).map_err(Refusal::Setup)?,
     };
     let band = renderer.band.unwrap_or(H);
+    let sl = renderer.engine == Engine::CodeFillSliced;
     let drawn = match (renderer.engine, rung) {
         (Engine::ZBuffer16, _) => z_buffer::<W, H, N, u16>(&scene, band),
         (Engine::ZBuffer32, _) => z_buffer::<W, H, N, u32>(&scene, band),
-        (_, None) => code_fill::<W, H, N, ACTIVE_FACES, ACTIVE_EDGES>(&scene, band),
-        (_, Some(0)) => code_fill::<W, H, N, { ROOMIER[0].0 }, { ROOMIER[0].1 }>(&scene, band),
-        (_, Some(1)) => code_fill::<W, H, N, { ROOMIER[1].0 }, { ROOMIER[1].1 }>(&scene, band),
-        (_, Some(2)) => code_fill::<W, H, N, { ROOMIER[2].0 }, { ROOMIER[2].1 }>(&scene, band),
-        (_, Some(_)) => code_fill::<W, H, N, { ROOMIER[3].0 }, { ROOMIER[3].1 }>(&scene, band),
+        (_, None) => code_fill::<W, H, N, ACTIVE_FACES, ACTIVE_EDGES>(&scene, band, sl),
+        (_, Some(0)) => code_fill::<W, H, N, { ROOMIER[0].0 }, { ROOMIER[0].1 }>(&scene, band, sl),
+        (_, Some(1)) => code_fill::<W, H, N, { ROOMIER[1].0 }, { ROOMIER[1].1 }>(&scene, band, sl),
+        (_, Some(2)) => code_fill::<W, H, N, { ROOMIER[2].0 }, { ROOMIER[2].1 }>(&scene, band, sl),
+        (_, Some(_)) => code_fill::<W, H, N, { ROOMIER[3].0 }, { ROOMIER[3].1 }>(&scene, band, sl),
     };
     drawn.map_err(Refusal::Library)
 }
@@ -267,8 +276,11 @@ fn code_fill<
 >(
     scene: &LibraryScene<'_, '_>,
     band: usize,
+    sliced: bool,
 ) -> Result<Drawn, Error<Infallible>> {
     type Engine<const F: usize, const E: usize> = CodeFillRenderer<U4, CODE_WORDS, F, E, POLY>;
+    // Bit-sliced rows: every pixel's code, up to CODE_WORDS words.
+    let mut words = vec![0u32; if sliced { W * CODE_WORDS } else { 0 }];
     let faces = scene.mesh.face_count();
     let mut vertices = vec![ProjectedVertex::default(); scene.mesh.vertices().len()];
     let mut drawn = vec![0u32; faces.div_ceil(32)];
@@ -285,19 +297,27 @@ fn code_fill<
         ids: &mut ids,
         lines: &mut lines,
     };
-    let working_ram =
-        ws.bytes() + size_of_val(scene.adjacency.edges()) + size_of::<Engine<FACES, EDGES>>();
+    let working_ram = ws.bytes()
+        + size_of_val(scene.adjacency.edges())
+        + size_of::<Engine<FACES, EDGES>>()
+        + size_of_val(words.as_slice());
     let mut renderer = Box::new(Engine::<FACES, EDGES>::new());
     let mut fb = Box::new(PackedFramebuffer::<W, H, N>::new());
     let palette = MonoPalette::default();
     let mut result = None;
     measured_region(&mut || {
-        result = Some(renderer.render(
+        let codes = if sliced {
+            RowCodes::BitSliced(&mut words)
+        } else {
+            RowCodes::Crossings
+        };
+        result = Some(renderer.render_rows(
             &scene.mesh,
             &scene.adjacency,
             &scene.camera,
             &scene.settings,
             &mut ws,
+            codes,
             &palette,
             &mut *fb,
             &mut (),

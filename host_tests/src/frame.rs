@@ -76,6 +76,8 @@ pub enum EngineSpec {
     /// Modulo-2 surface codes per row, no depth buffer.
     #[default]
     CodeFill,
+    /// The same engine with every pixel's code in words (`RowCodes::BitSliced`).
+    CodeFillSliced,
     /// Depth buffer in bands.
     ZBuffer,
 }

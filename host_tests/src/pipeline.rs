@@ -5,7 +5,7 @@ use std::time::Instant;
 use embedded_graphics::pixelcolor::BinaryColor;
 use fixed::types::extra::{LeEqU32, U0, U1, U10, U11, U12, U2, U3, U4, U5, U6, U7, U8, U9};
 use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
-use pbuffer::render::{Depth, FrameProbe, ProjectedVertex};
+use pbuffer::render::{Depth, FrameProbe, ProjectedVertex, RowCodes};
 use pbuffer::{
     Camera, CodeFillRenderer, CodeWorkspace, Cull, DrawMode, MonoPalette, Pattern, Projection,
     Settings, Span, SpanSink, Stats, Viewport, Workspace, ZBufferRenderer,
@@ -226,7 +226,10 @@ fn render_s<Frac: LeEqU32>(
     cam: &CameraSpec,
     spec: &RenderSpec,
 ) -> Result<Frame, String> {
-    if spec.engine == EngineSpec::CodeFill {
+    if matches!(
+        spec.engine,
+        EngineSpec::CodeFill | EngineSpec::CodeFillSliced
+    ) {
         return match render_code::<Frac, 4>(mesh, cam, spec) {
             Err(e) if e.contains("surface code") => render_code::<Frac, 32>(mesh, cam, spec),
             other => other,
@@ -388,20 +391,36 @@ fn render_code<Frac: LeEqU32, const WORDS: usize>(
         ids: vec![0; w * h],
         lines: vec![0; w * h],
     };
+    // Bit-sliced rows: every pixel's code, up to WORDS words.
+    let mut words = vec![
+        0u32;
+        if spec.engine == EngineSpec::CodeFillSliced {
+            w * WORDS
+        } else {
+            0
+        }
+    ];
+    let codes = if spec.engine == EngineSpec::CodeFillSliced {
+        RowCodes::BitSliced(&mut words)
+    } else {
+        RowCodes::Crossings
+    };
     let start = Instant::now();
     let stats = renderer
-        .render(
+        .render_rows(
             &mesh,
             &adjacency,
             &camera,
             &settings,
             &mut ws,
+            codes,
             &MonoPalette::default(),
             &mut target,
             &mut probe,
         )
         .map_err(|e| format!("render: {e}"))?;
     let time_us = start.elapsed().as_micros() as u64;
+    let lent = lent + std::mem::size_of_val(words.as_slice());
     // The engine this frame needed: its peak active faces and edges, not the host's
     // capacities.
     let working = lent

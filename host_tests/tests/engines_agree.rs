@@ -1,4 +1,5 @@
-//! The code-fill engine against the Z-buffer engine on random scenes: the same frame,
+//! The code-fill engine (every third scene with bit-sliced rows) against the Z-buffer
+//! engine on random scenes: the same frame,
 //! pixel for pixel (face ids, line masks and the packed picture). The code-fill
 //! engine resolves overlapping faces from their planes exactly as the Z-buffer
 //! receives them (face order, ties to the lower index), so no tolerance is owed.
@@ -160,7 +161,11 @@ fn code_fill_draws_the_z_buffer_frame_on_random_scenes() {
             &mesh,
             &cam,
             &RenderSpec {
-                engine: EngineSpec::CodeFill,
+                engine: if k % 3 == 2 {
+                    EngineSpec::CodeFillSliced
+                } else {
+                    EngineSpec::CodeFill
+                },
                 ..spec.clone()
             },
         );

@@ -3,8 +3,9 @@
 //! `host_tests::metrics`: surfaces (ids, mode `surfaces`) must have no holes, no wrong
 //! faces, no depth-order errors and no face-id differences away from edges; lines
 //! (mode `dashed`) must stay within the misclassified / missing limits. Each scene runs
-//! with the code-fill engine (full frame, and 8-row bands) and the Z-buffer engine (a
-//! full-frame band with 32-bit depth, and 8-row bands with 16-bit depth).
+//! with the code-fill engine (full frame, and 8-row bands with bit-sliced rows) and the
+//! Z-buffer engine (a full-frame band with 32-bit depth, and 8-row bands with 16-bit
+//! depth).
 //! One report line per scene: `cargo test --release -p host_tests --test
 //! pipeline_vs_reference -- --nocapture`.
 
@@ -47,7 +48,7 @@ fn run_scene(
     for mode in [ModeSpec::Surfaces, ModeSpec::Dashed] {
         for (engine, band, depth_bits) in [
             (EngineSpec::CodeFill, height, 32),
-            (EngineSpec::CodeFill, 8, 32),
+            (EngineSpec::CodeFillSliced, 8, 32),
             (EngineSpec::ZBuffer, height, 32),
             (EngineSpec::ZBuffer, 8, 16),
         ] {
@@ -67,6 +68,7 @@ fn run_scene(
                 },
                 match engine {
                     EngineSpec::CodeFill => "codefill",
+                    EngineSpec::CodeFillSliced => "codefill-sliced",
                     EngineSpec::ZBuffer => "zbuffer",
                 },
                 if engine == EngineSpec::ZBuffer {

@@ -163,6 +163,19 @@ impl<const N: usize> ActiveEdges<N> {
         self.sorted = len;
     }
 
+    /// Moves the crossings to row `y` without restoring their order (for a
+    /// representation that needs none).
+    pub fn set_row(&mut self, y: i32, s: u32, width: u16) {
+        for &i in self.by_x.iter() {
+            if let Some(e) = self.slots.get_mut(usize::from(i)) {
+                if e.edge.first <= y {
+                    e.x = e.edge.crossing(s).clamp(0, i32::from(width)) as u16;
+                }
+            }
+        }
+        self.sorted = self.by_x.len();
+    }
+
     /// Steps the edges that have begun past row `next - 1` and drops those that end
     /// there.
     pub fn step(&mut self, next: i32) {

@@ -19,7 +19,7 @@ mod zbuffer;
 use embedded_graphics_core::pixelcolor::BinaryColor;
 use heapless::Vec;
 
-pub use codefill::{CodeFillRenderer, CodeWorkspace};
+pub use codefill::{CodeFillRenderer, CodeWorkspace, RowCodes};
 pub use compose::{FrameProbe, MonoPalette, Palette, SolidPalette};
 pub use transform::{ClipVertex, ProjectedVertex, ScreenVertex};
 pub use zband::Depth;

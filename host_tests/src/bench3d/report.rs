@@ -38,12 +38,13 @@ fn draw_rows(view: &View, model: &'static str) -> Vec<Row> {
         .map(|&renderer| {
             let outcome = draw(view, renderer, None);
             let refused = matches!(outcome, Err(Refusal::Library(_)));
-            let roomier = (refused && renderer.engine == Engine::CodeFill)
-                .then(|| {
-                    (0..ROOMIER.len())
-                        .find_map(|i| draw(view, renderer, Some(i)).ok().map(|d| (ROOMIER[i], d)))
-                })
-                .flatten();
+            let roomier = (refused
+                && matches!(renderer.engine, Engine::CodeFill | Engine::CodeFillSliced))
+            .then(|| {
+                (0..ROOMIER.len())
+                    .find_map(|i| draw(view, renderer, Some(i)).ok().map(|d| (ROOMIER[i], d)))
+            })
+            .flatten();
             Row {
                 job: Job {
                     model,

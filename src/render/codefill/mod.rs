@@ -15,6 +15,7 @@
 
 mod resolve;
 mod row;
+mod sliced;
 
 use core::marker::PhantomData;
 
@@ -65,6 +66,19 @@ impl CodeWorkspace<'_> {
             + size_of_val(self.ids)
             + size_of_val(self.lines)
     }
+}
+
+/// How the code-fill engine keeps a row's surface codes (both give the same frame).
+#[derive(Debug)]
+pub enum RowCodes<'s> {
+    /// The row's crossings in order, each toggling its face: work grows with the
+    /// edges on a row, and the code is as wide as the most faces over one pixel.
+    /// The default ([`CodeFillRenderer::render`]).
+    Crossings,
+    /// Every pixel's code in machine words (a running XOR a word at a time): work
+    /// grows with the pixels; the code is as wide as the faces active on a row. The
+    /// buffer holds width x ceil(active faces / 32) words.
+    BitSliced(&'s mut [u32]),
 }
 
 /// A face on the rows it covers.
@@ -196,6 +210,29 @@ impl<
     where
         K::Color: PixelColor,
     {
+        let codes = RowCodes::Crossings;
+        self.render_rows(
+            mesh, edges, camera, settings, ws, codes, palette, sink, probe,
+        )
+    }
+
+    /// [`render`](Self::render) with the row representation `codes`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn render_rows<K: SpanSink, P: Palette<Color = K::Color>, R: FrameProbe>(
+        &mut self,
+        mesh: &Mesh<'_>,
+        edges: &EdgeAdjacency<'_>,
+        camera: &Camera,
+        settings: &Settings,
+        ws: &mut CodeWorkspace<'_>,
+        mut codes: RowCodes<'_>,
+        palette: &P,
+        sink: &mut K,
+        probe: &mut R,
+    ) -> Result<Stats, Error<K::Error>>
+    where
+        K::Color: PixelColor,
+    {
         let viewport = sink.viewport();
         let (width, height) = (viewport.width, viewport.height);
         let s = Subpixel::<Frac>::BITS;
@@ -264,9 +301,13 @@ impl<
                     out.fill(0);
                     continue;
                 }
-                stats.spans += self
-                    .scan_row(&ctx, vertices, order, y, out)
-                    .map_err(Error::widen)?;
+                stats.spans += match &mut codes {
+                    RowCodes::Crossings => self.scan_row(&ctx, vertices, order, y, out),
+                    RowCodes::BitSliced(words) => {
+                        self.scan_row_sliced(&ctx, vertices, order, y, out, words)
+                    }
+                }
+                .map_err(Error::widen)?;
             }
             if settings.mode.draws_lines() {
                 line_pass::<POLY>(

@@ -1,0 +1,105 @@
+//! The other row representation: the surface code of every pixel, in machine words.
+//! Each face active on the row holds one bit for the whole row (its place in the
+//! active list); each of its crossings XORs that bit into the code of the crossing's
+//! pixel, and a running XOR from the left, a word at a time, gives every pixel's code.
+//! No sort; the work grows with the pixels of a row rather than its crossings, and
+//! the code is as wide as the faces active on the row.
+
+use fixed::types::extra::LeEqU32;
+
+use super::CodeFillRenderer;
+use crate::render::transform::ProjectedVertex;
+use crate::render::FrameCtx;
+use crate::Error;
+
+impl<
+        Frac: LeEqU32,
+        const WORDS: usize,
+        const FACES: usize,
+        const EDGES: usize,
+        const POLY: usize,
+    > CodeFillRenderer<Frac, WORDS, FACES, EDGES, POLY>
+{
+    /// As [`scan_row`](Self::scan_row), with the row's codes in `codes` (width x
+    /// words per pixel).
+    pub(super) fn scan_row_sliced(
+        &mut self,
+        ctx: &FrameCtx<'_, '_>,
+        vertices: &[ProjectedVertex],
+        order: &[u32],
+        y: u16,
+        out: &mut [u16],
+        codes: &mut [u32],
+    ) -> Result<u32, Error> {
+        while self.row < y {
+            self.activate(ctx, vertices, order, self.row)?;
+            self.step_row();
+        }
+        self.activate(ctx, vertices, order, y)?;
+        self.peak_faces = self.peak_faces.max(self.live.len());
+        self.peak_edges = self.peak_edges.max(self.edges.len());
+        // The code is as wide as the faces active on the row.
+        self.widest = self.widest.max(self.live.len());
+        let width = out.len();
+        let words = self.live.len().div_ceil(32);
+        if self.live.len() > Self::CODE_BITS {
+            // The frame fails with the width it needs (see `render`).
+            self.step_row();
+            return Ok(0);
+        }
+        let Some(codes) = codes.get_mut(..width * words) else {
+            return Err(Error::CapacityExceeded {
+                needed: width * words,
+                capacity: codes.len(),
+            });
+        };
+        codes.fill(0);
+        for (bit, &slot) in self.live.iter().enumerate() {
+            if let Some(face) = self.faces.get_mut(usize::from(slot)) {
+                face.bit = bit as u16;
+            }
+            if let Some(owner) = self
+                .owner
+                .get_mut(bit / 32)
+                .and_then(|o| o.get_mut(bit % 32))
+            {
+                *owner = slot;
+            }
+        }
+        let row = i32::from(y);
+        self.edges.set_row(row, ctx.s, width as u16);
+        for k in 0..self.edges.len() {
+            let Some(e) = self.edges.get(k) else { break };
+            let x = usize::from(e.x);
+            if e.edge.first > row || x >= width {
+                continue;
+            }
+            let bit = self.faces.get(usize::from(e.face)).map_or(0, |f| f.bit);
+            if let Some(word) = codes.get_mut(x * words + usize::from(bit / 32)) {
+                *word ^= 1 << (bit % 32);
+            }
+        }
+        // The running XOR, a word at a time; a run ends where some code changes.
+        self.code = [0; WORDS];
+        self.inside = 0;
+        let (mut xa, mut runs) = (0usize, 0u32);
+        for (x, toggles) in codes.chunks_exact(words.max(1)).enumerate().take(width) {
+            if toggles.iter().all(|&t| t == 0) {
+                continue;
+            }
+            if x > xa {
+                runs += self.resolve(xa as u16, x as u16, out);
+                xa = x;
+            }
+            for (c, &t) in self.code.iter_mut().zip(toggles) {
+                *c ^= t;
+            }
+            self.inside = self.code.iter().map(|c| c.count_ones() as usize).sum();
+        }
+        if xa < width {
+            runs += self.resolve(xa as u16, width as u16, out);
+        }
+        self.step_row();
+        Ok(runs)
+    }
+}
