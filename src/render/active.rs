@@ -1,9 +1,10 @@
 //! The active edge list of the code-fill engine: the edges of every active face,
 //! kept in order of their crossing on the current row.
 //!
-//! Records stay in place (a slot each); only a list of `u16` slot numbers is sorted,
-//! and an edge joining the list is inserted at its place, so that the per-row
-//! insertion sort moves only the few edges whose order changed.
+//! Records stay in place (a slot each); only a list of `u32` keys (crossing << 16 |
+//! slot) is sorted, so that sorting compares and moves plain words; edges added on a
+//! row are sorted apart and merged once, and the per-row insertion sort moves only
+//! the few edges whose order changed.
 
 use heapless::Vec;
 
@@ -36,25 +37,35 @@ pub(crate) struct ActiveEdges<const N: usize> {
     /// Slots never used since `clear`, from `fresh` on; released slots in `free`.
     fresh: usize,
     free: Vec<u16, N>,
-    /// Slots in use, by crossing: the first `sorted` in order, the rest added since.
-    by_x: Vec<u16, N>,
+    /// Keys `x << 16 | slot` of the slots in use, by crossing: the first `sorted`
+    /// in order, the rest added since.
+    by_x: Vec<u32, N>,
     sorted: usize,
+}
+
+/// The sort key of an edge crossing at `x` held in `slot`.
+fn key(x: u16, slot: u16) -> u32 {
+    u32::from(x) << 16 | u32::from(slot)
+}
+
+/// The slot of a key.
+fn slot(key: u32) -> usize {
+    (key & 0xFFFF) as usize
 }
 
 /// Edges added on one row that are merged into the order (more are sorted in).
 const MERGE: usize = 64;
 
-/// Insertion sort of slot numbers by `key`.
-fn insertion_sort(slots: &mut [u16], key: impl Fn(u16) -> u16) {
-    for k in 1..slots.len() {
-        let moving = slots[k];
-        let x = key(moving);
+/// Insertion sort of keys.
+fn insertion_sort(keys: &mut [u32]) {
+    for k in 1..keys.len() {
+        let moving = keys[k];
         let mut j = k;
-        while j > 0 && key(slots[j - 1]) > x {
-            slots[j] = slots[j - 1];
+        while j > 0 && keys[j - 1] > moving {
+            keys[j] = keys[j - 1];
             j -= 1;
         }
-        slots[j] = moving;
+        keys[j] = moving;
     }
 }
 
@@ -85,16 +96,12 @@ impl<const N: usize> ActiveEdges<N> {
 
     /// The `k`-th edge by crossing.
     pub fn get(&self, k: usize) -> Option<&ActiveEdge> {
-        self.by_x
-            .get(k)
-            .and_then(|&i| self.slots.get(usize::from(i)))
+        self.by_x.get(k).and_then(|&i| self.slots.get(slot(i)))
     }
 
     /// The `k`-th edge by crossing, to change.
     pub fn get_mut(&mut self, k: usize) -> Option<&mut ActiveEdge> {
-        self.by_x
-            .get(k)
-            .and_then(|&i| self.slots.get_mut(usize::from(i)))
+        self.by_x.get(k).and_then(|&i| self.slots.get_mut(slot(i)))
     }
 
     /// Adds `edge` of face `face` (DDA at its first row); it takes its place at the
@@ -118,38 +125,31 @@ impl<const N: usize> ActiveEdges<N> {
             };
         }
         // Merged into the order once per row, by `move_to_row`.
-        self.by_x.push(slot).map_err(|_| ())
+        self.by_x.push(key(x, slot)).map_err(|_| ())
     }
 
     /// Moves the crossings to row `y` (edges that have begun) and restores the
     /// order: an insertion sort, since the order changes little between rows.
     pub fn move_to_row(&mut self, y: i32, s: u32, width: u16) {
-        for &i in self.by_x.iter() {
-            if let Some(e) = self.slots.get_mut(usize::from(i)) {
-                if e.edge.first <= y {
-                    e.x = e.edge.crossing(s).clamp(0, i32::from(width)) as u16;
-                }
-            }
-        }
-        let key = |i: u16| self.slots.get(usize::from(i)).map_or(0, |e| e.x);
+        self.set_row(y, s, width);
         let len = self.by_x.len();
         let old = self.sorted.min(len);
         // The edges held before: nearly in order, an insertion sort.
-        insertion_sort(&mut self.by_x[..old], key);
+        insertion_sort(&mut self.by_x[..old]);
         // The edges added since, sorted apart and merged from the back: each edge
         // held moves once, not once per edge added.
-        let mut added = [0u16; MERGE];
+        let mut added = [0u32; MERGE];
         match self.by_x.get(old..).filter(|tail| tail.len() <= MERGE) {
             Some(tail) => {
                 let added = &mut added[..tail.len()];
                 added.copy_from_slice(tail);
-                insertion_sort(added, key);
+                insertion_sort(added);
                 let (mut i, mut j) = (old, added.len());
                 for w in (0..len).rev() {
                     if j == 0 {
                         break;
                     }
-                    if i > 0 && key(self.by_x[i - 1]) > key(added[j - 1]) {
+                    if i > 0 && self.by_x[i - 1] > added[j - 1] {
                         self.by_x[w] = self.by_x[i - 1];
                         i -= 1;
                     } else {
@@ -158,7 +158,7 @@ impl<const N: usize> ActiveEdges<N> {
                     }
                 }
             }
-            None => insertion_sort(&mut self.by_x, key),
+            None => insertion_sort(&mut self.by_x),
         }
         self.sorted = len;
     }
@@ -166,14 +166,15 @@ impl<const N: usize> ActiveEdges<N> {
     /// Moves the crossings to row `y` without restoring their order (for a
     /// representation that needs none).
     pub fn set_row(&mut self, y: i32, s: u32, width: u16) {
-        for &i in self.by_x.iter() {
-            if let Some(e) = self.slots.get_mut(usize::from(i)) {
+        for held in self.by_x.iter_mut() {
+            let i = slot(*held);
+            if let Some(e) = self.slots.get_mut(i) {
                 if e.edge.first <= y {
                     e.x = e.edge.crossing(s).clamp(0, i32::from(width)) as u16;
+                    *held = key(e.x, i as u16);
                 }
             }
         }
-        self.sorted = self.by_x.len();
     }
 
     /// Steps the edges that have begun past row `next - 1` and drops those that end
@@ -184,11 +185,11 @@ impl<const N: usize> ActiveEdges<N> {
         let mut kept = 0;
         for k in 0..self.by_x.len() {
             let i = self.by_x[k];
-            let Some(e) = self.slots.get_mut(usize::from(i)) else {
+            let Some(e) = self.slots.get_mut(slot(i)) else {
                 continue;
             };
             if e.edge.end <= next {
-                let _ = self.free.push(i);
+                let _ = self.free.push(slot(i) as u16);
                 continue;
             }
             if e.edge.first < next {
