@@ -222,11 +222,10 @@ pub(crate) fn polygon_contains(poly: &[ScreenVertex], x: i64, y: i64) -> bool {
         } else {
             (bx, by, ax, ay)
         };
-        // Inside the guard band every difference is below 2^28 half-units: the
-        // products fit 64 bits (wrapping ops only spare the overflow checks).
-        let cross = (hx - lx)
-            .wrapping_mul(y - ly)
-            .wrapping_sub((hy - ly).wrapping_mul(x - lx));
+        // Inside the guard band every difference is below 2^28 half-units: 32-bit
+        // factors with a 64-bit product (one multiply on a Cortex-M4).
+        let wide = |a: i64, b: i64| i64::from(a as i32) * i64::from(b as i32);
+        let cross = wide(hx - lx, y - ly) - wide(hy - ly, x - lx);
         if cross == 0 {
             return true;
         }
