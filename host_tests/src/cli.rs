@@ -58,6 +58,22 @@ pub enum Look {
     Paper,
 }
 
+impl Look {
+    /// Off and on colours (RGB) of the look, shared by `render`'s PNG and the `viewer`
+    /// window so that a screenshot of one can be compared with the other.
+    pub fn colours(self) -> ([u8; 3], [u8; 3]) {
+        match self {
+            // A reflective memory LCD: grey-green glass, near-black pixels.
+            Look::LcdWhite => ([214, 219, 205], [38, 42, 48]),
+            Look::LcdGreen => ([120, 185, 50], [32, 32, 32]),
+            Look::LcdBlue => ([70, 80, 230], [230, 230, 255]),
+            Look::OledWhite => ([20, 20, 20], [255, 255, 255]),
+            Look::OledBlue => ([0, 20, 40], [0, 210, 255]),
+            Look::Paper => ([255, 255, 255], [0, 0, 0]),
+        }
+    }
+}
+
 /// Everything the command line says.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Options {

@@ -8,6 +8,7 @@ pub mod frame;
 pub mod image;
 pub mod metrics;
 pub mod obj;
+pub mod orbit;
 pub mod pipeline;
 pub mod random;
 pub mod reference;

@@ -25,7 +25,7 @@
 //! Errors are one line, `FILE:LINE: what is wrong` (`FILE:-: ...` for problems of the
 //! whole file); nothing here panics.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use crate::frame::MeshData;
 
@@ -165,6 +165,50 @@ fn parse_face<'a>(
         ));
     }
     Ok((face, max_positive))
+}
+
+/// The workspace root (the parent of `host_tests/`), where `../shared/` and `docs/` are
+/// found relative to.
+pub fn workspace_root() -> PathBuf {
+    let manifest = Path::new(env!("CARGO_MANIFEST_DIR"));
+    manifest.parent().unwrap_or(manifest).to_path_buf()
+}
+
+/// A 2 x 2 x 2 cube centred on the origin, faces counter-clockwise from outside.
+pub fn builtin_cube() -> MeshData {
+    let vertices = (0..8)
+        .map(|i| {
+            [
+                f64::from(i & 1) * 2.0 - 1.0,
+                f64::from((i >> 1) & 1) * 2.0 - 1.0,
+                f64::from((i >> 2) & 1) * 2.0 - 1.0,
+            ]
+        })
+        .collect();
+    let faces = vec![
+        vec![0, 2, 3, 1],
+        vec![4, 5, 7, 6],
+        vec![0, 1, 5, 4],
+        vec![2, 6, 7, 3],
+        vec![0, 4, 6, 2],
+        vec![1, 3, 7, 5],
+    ];
+    MeshData { vertices, faces }
+}
+
+/// The scene of the `render` and `viewer` commands and the name to report it by: the
+/// given file, else `../shared/models/suzanne.obj` (from the workspace root), else the
+/// built-in cube when that file is missing, so both commands show the same default.
+pub fn load_scene(path: Option<&Path>) -> Result<(MeshData, String), String> {
+    let default_model = workspace_root().join("../shared/models/suzanne.obj");
+    match path {
+        Some(p) => Ok((load_obj(p)?, p.display().to_string())),
+        None if default_model.exists() => Ok((
+            load_obj(&default_model)?,
+            default_model.display().to_string(),
+        )),
+        None => Ok((builtin_cube(), "built-in cube".to_string())),
+    }
 }
 
 #[cfg(test)]

@@ -17,14 +17,14 @@
 //! is caught by a hook that prints one line and exits with 2.
 
 use std::io::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::ExitCode;
 use std::time::Instant;
 
 use host_tests::cli::{parse_args, Look, Options, USAGE};
-use host_tests::frame::{Frame, MeshData};
+use host_tests::frame::Frame;
 use host_tests::image::{fnv1a64, packed_pixel, packed_stride, write_rgb_png};
-use host_tests::obj::load_obj;
+use host_tests::obj::{load_scene, workspace_root};
 use host_tests::pipeline::render_frame;
 
 /// An error to report: the line to print and the exit status.
@@ -32,33 +32,6 @@ struct Fail(String, u8);
 
 fn bad(msg: impl Into<String>) -> Fail {
     Fail(msg.into(), 2)
-}
-
-fn workspace_root() -> PathBuf {
-    let manifest = Path::new(env!("CARGO_MANIFEST_DIR"));
-    manifest.parent().unwrap_or(manifest).to_path_buf()
-}
-
-/// A 2 x 2 x 2 cube centred on the origin, faces counter-clockwise from outside.
-fn builtin_cube() -> MeshData {
-    let vertices = (0..8)
-        .map(|i| {
-            [
-                f64::from(i & 1) * 2.0 - 1.0,
-                f64::from((i >> 1) & 1) * 2.0 - 1.0,
-                f64::from((i >> 2) & 1) * 2.0 - 1.0,
-            ]
-        })
-        .collect();
-    let faces = vec![
-        vec![0, 2, 3, 1],
-        vec![4, 5, 7, 6],
-        vec![0, 1, 5, 4],
-        vec![2, 6, 7, 3],
-        vec![0, 4, 6, 2],
-        vec![1, 3, 7, 5],
-    ];
-    MeshData { vertices, faces }
 }
 
 fn write_file(flag: &str, path: &Path, bytes: &[u8]) -> Result<(), Fail> {
@@ -98,19 +71,6 @@ fn lines_pgm(frame: &Frame) -> Vec<u8> {
     out
 }
 
-/// Off and on colours of a look.
-fn colours(look: Look) -> ([u8; 3], [u8; 3]) {
-    match look {
-        // A reflective memory LCD: grey-green glass, near-black pixels.
-        Look::LcdWhite => ([214, 219, 205], [38, 42, 48]),
-        Look::LcdGreen => ([120, 185, 50], [32, 32, 32]),
-        Look::LcdBlue => ([70, 80, 230], [230, 230, 255]),
-        Look::OledWhite => ([20, 20, 20], [255, 255, 255]),
-        Look::OledBlue => ([0, 20, 40], [0, 210, 255]),
-        Look::Paper => ([255, 255, 255], [0, 0, 0]),
-    }
-}
-
 fn mix(a: [u8; 3], b: [u8; 3], t: f32) -> [u8; 3] {
     std::array::from_fn(|k| (f32::from(a[k]) * (1.0 - t) + f32::from(b[k]) * t).round() as u8)
 }
@@ -120,7 +80,7 @@ fn mix(a: [u8; 3], b: [u8; 3], t: f32) -> [u8; 3] {
 /// towards the glass colour, a faint pixel grid that keeps lines continuous.
 fn write_png(o: &Options, path: &Path, frame: &Frame) -> Result<(), Fail> {
     let (w, h, s) = (frame.width, frame.height, o.scale);
-    let (off, on) = colours(o.look);
+    let (off, on) = o.look.colours();
     let grid = s >= 3 && o.look != Look::Paper;
     let (on_edge, off_edge) = (mix(on, off, 0.3), mix(off, [0, 0, 0], 0.06));
     let mut rgb = Vec::with_capacity(w * s * h * s * 3);
@@ -156,15 +116,7 @@ fn run() -> Result<(), Fail> {
     }
 
     // The scene.
-    let default_model = workspace_root().join("../shared/models/suzanne.obj");
-    let (mesh, scene_name) = match &o.scene {
-        Some(p) => (load_obj(p).map_err(bad)?, p.display().to_string()),
-        None if default_model.exists() => (
-            load_obj(&default_model).map_err(bad)?,
-            default_model.display().to_string(),
-        ),
-        None => (builtin_cube(), "built-in cube".to_string()),
-    };
+    let (mesh, scene_name) = load_scene(o.scene.as_deref()).map_err(bad)?;
     if o.ids.is_some() && mesh.faces.len() > 65_535 {
         return Err(bad(format!(
             "--ids: {scene_name} has {} faces; a 16-bit id image holds at most 65535",
