@@ -159,10 +159,11 @@ pub fn next_mode(m: ModeSpec) -> ModeSpec {
     MODES[(i + 1) % MODES.len()]
 }
 
-/// The other engine.
+/// The next engine: code fill, code fill with bit-sliced rows, Z-buffer.
 pub fn other_engine(e: EngineSpec) -> EngineSpec {
     match e {
-        EngineSpec::CodeFill => EngineSpec::ZBuffer,
+        EngineSpec::CodeFill => EngineSpec::CodeFillSliced,
+        EngineSpec::CodeFillSliced => EngineSpec::ZBuffer,
         EngineSpec::ZBuffer => EngineSpec::CodeFill,
     }
 }
@@ -182,6 +183,7 @@ pub fn mode_name(m: ModeSpec) -> &'static str {
 pub fn engine_name(e: EngineSpec) -> &'static str {
     match e {
         EngineSpec::CodeFill => "codefill",
+        EngineSpec::CodeFillSliced => "codefill-sliced",
         EngineSpec::ZBuffer => "zbuffer",
     }
 }

@@ -8,7 +8,7 @@
 //! It takes `render`'s scene and view flags (`--size`, camera, `--mode`, `--engine`,
 //! `--look`, `--scale`, ...; not the output flags), so its first frame is the frame
 //! `render` makes for the same flags. Keys: arrows turn the camera about the model,
-//! +/- zoom, M cycles the modes, E switches the engine, R resets the view, Q or Escape
+//! +/- zoom, M cycles the modes, E cycles the engines, R resets the view, Q or Escape
 //! quits.
 //!
 //! After each frame is on the screen it prints one line,
@@ -43,7 +43,7 @@ const TITLE: &str = "pbuffer viewer";
 const USAGE: &str = "\
 usage: viewer [SCENE.obj] [render's scene, camera, rendering and look flags]
   opens a window (SDL2) showing the model as `render` draws it for the same flags
-keys: arrows turn about the model, + and - zoom, M next mode, E other engine,
+keys: arrows turn about the model, + and - zoom, M next mode, E next engine,
       R reset the view, Q or Escape quit";
 
 /// What a key asks for.
