@@ -33,9 +33,9 @@ use pbuffer::{
 };
 
 /// Mesh + camera cases of the render property.
-const RENDER_CASES: usize = 3000;
+const RENDER_CASES: usize = 30_000;
 /// Mesh + camera cases of the error property.
-const ERROR_CASES: usize = 20_000;
+const ERROR_CASES: usize = 200_000;
 
 /// The four engines.
 #[derive(Clone, Copy, Debug)]
@@ -371,4 +371,31 @@ fn valid_scenes_never_panic_or_write_outside_the_target() {
             "{k} never happened: {outcomes:?}"
         );
     }
+}
+
+/// Regression (found by `bad_meshes_and_cameras_give_the_precise_error`): a view
+/// 1e35 long overflowed the square in `normalize` and was rejected as
+/// `BadCamera(EyeAtTarget)`; one 1e-30 long underflowed it. Both are cameras.
+#[test]
+fn camera_looking_1e35_or_1e_minus_30_away_is_not_eye_at_target() {
+    for d in [1e35f32, 1e-30] {
+        let c = Camera::new(
+            [0.0; 3],
+            [0.0, 0.0, -d],
+            [0.0, 1.0, 0.0],
+            pbuffer::Projection::Perspective { fov_y_deg: 60.0 },
+            0.1,
+            100.0,
+        );
+        assert!(c.is_ok(), "view {d} long: {c:?}");
+    }
+    let up = Camera::new(
+        [0.0; 3],
+        [0.0, 0.0, -1.0],
+        [0.0, 1e35, 0.0],
+        pbuffer::Projection::Perspective { fov_y_deg: 60.0 },
+        0.1,
+        100.0,
+    );
+    assert!(up.is_ok(), "up 1e35 long: {up:?}");
 }
