@@ -75,6 +75,19 @@ pub(crate) fn sqrt(x: f32) -> f32 {
 
 /// `v / |v|`, or `None` for a zero (or non-finite) vector.
 fn normalize(v: [f32; 3]) -> Option<[f32; 3]> {
+    // A component above 1.8e19 overflows the square (a view 1e35 long was called
+    // `EyeAtTarget`) and one below 1e-19 underflows it: then divide by the largest
+    // component first. Otherwise unchanged, so that cameras keep their exact vectors.
+    let d = dot(v, v);
+    let v = if d.is_finite() && d >= f32::MIN_POSITIVE {
+        v
+    } else {
+        let m = v.iter().fold(0.0f32, |m, c| m.max(c.abs()));
+        if !(m > 0.0 && m.is_finite()) {
+            return None;
+        }
+        [v[0] / m, v[1] / m, v[2] / m]
+    };
     let len = sqrt(dot(v, v));
     if len > 0.0 && len.is_finite() {
         Some([v[0] / len, v[1] / len, v[2] / len])
