@@ -183,6 +183,28 @@ struct FrameCtx<'f, 'm> {
     viewpoint: Viewpoint,
 }
 
+/// Rows per band that `samples` lent id (and depth) samples and `line_words` lent
+/// line words hold in `viewport`: the whole frame, or the band plus a one-row apron
+/// above and below. Too little for one row is `CapacityExceeded` with what one row
+/// needs.
+fn band_rows(viewport: Viewport, samples: usize, line_words: usize) -> Result<u16, Error> {
+    let (width, height) = (viewport.width, viewport.height);
+    let row_words = usize::from(width).div_ceil(32);
+    let w = usize::from(width).max(1);
+    let stored = (samples / w).min(usize::from(u16::MAX)) as u16;
+    let rows = if stored >= height {
+        height
+    } else {
+        stored.saturating_sub(2)
+    }
+    .min((line_words / (2 * row_words).max(1)).min(usize::from(height)) as u16);
+    if height > 0 && rows == 0 {
+        need(usize::from(IdBand::rows_needed(1, height)) * w, samples)?;
+        need(2 * row_words, line_words)?;
+    }
+    Ok(rows)
+}
+
 /// The shared start of a frame: checks the lent per-frame storage, transforms every
 /// vertex, marks the drawn faces and this view's feature edges, and counts them in
 /// `stats`.

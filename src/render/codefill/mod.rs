@@ -28,7 +28,7 @@ use super::compose::{self, FrameProbe, Palette};
 use super::lines::{line_pass, LineMasks};
 use super::transform::{ProjectedVertex, ScreenVertex};
 use super::zband::{IdBand, RowPlane};
-use super::{begin_frame, bit, face_polygon, need, FrameCtx, Settings, Stats};
+use super::{band_rows, begin_frame, bit, face_polygon, need, FrameCtx, Settings, Stats};
 use crate::camera::Camera;
 use crate::geometry::Subpixel;
 use crate::mesh::{EdgeAdjacency, Mesh};
@@ -237,19 +237,7 @@ impl<
         let (width, height) = (viewport.width, viewport.height);
         let s = Subpixel::<Frac>::BITS;
         let row_words = usize::from(width).div_ceil(32);
-        let w = usize::from(width).max(1);
-        let stored = (ws.ids.len() / w).min(usize::from(u16::MAX)) as u16;
-        let band_rows = if stored >= height {
-            height
-        } else {
-            stored.saturating_sub(2)
-        }
-        .min((ws.lines.len() / (2 * row_words).max(1)).min(usize::from(height)) as u16);
-        if height > 0 && band_rows == 0 {
-            let rows = usize::from(IdBand::rows_needed(1, height));
-            need(rows * w, ws.ids.len()).map_err(Error::widen)?;
-            need(2 * row_words, ws.lines.len()).map_err(Error::widen)?;
-        }
+        let band_rows = band_rows(viewport, ws.ids.len(), ws.lines.len()).map_err(Error::widen)?;
         let mut stats = Stats {
             band_rows: u32::from(band_rows),
             ..Stats::default()
