@@ -75,14 +75,27 @@ impl<
                         }
                     }
                 }
+                // Then the faces entering; two crossings of one face here (a face
+                // narrower than a pixel on this row) cancel instead of taking a bit
+                // for nothing.
                 for j in k..end {
-                    let Some(e) = self.edges.get_mut(j) else {
-                        break;
-                    };
-                    let (face, enter) = (e.face, live(e) && !e.mark);
-                    e.mark = false;
-                    if enter {
-                        self.toggle(usize::from(face));
+                    let Some(&e) = self.edges.get(j) else { break };
+                    if !live(&e) || e.mark {
+                        continue;
+                    }
+                    let twin = (j + 1..end).find(|&t| {
+                        self.edges
+                            .get(t)
+                            .is_some_and(|o| o.face == e.face && live(o) && !o.mark)
+                    });
+                    match twin.and_then(|t| self.edges.get_mut(t)) {
+                        Some(other) => other.mark = true,
+                        None => self.toggle(usize::from(e.face)),
+                    }
+                }
+                for j in k..end {
+                    if let Some(e) = self.edges.get_mut(j) {
+                        e.mark = false;
                     }
                 }
             }
