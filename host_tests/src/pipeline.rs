@@ -77,6 +77,17 @@ struct Collect {
     lines: Vec<u8>,
 }
 
+impl Collect {
+    /// Empty images of `width` x `height`.
+    fn new(width: usize, height: usize) -> Self {
+        Self {
+            width,
+            ids: vec![0; width * height],
+            lines: vec![0; width * height],
+        }
+    }
+}
+
 impl FrameProbe for Collect {
     fn row(&mut self, y: u16, ids: &[u16], visible: &[u32], hidden: &[u32]) {
         let base = usize::from(y) * self.width;
@@ -279,11 +290,7 @@ fn render_sd<Frac: LeEqU32, D: Depth>(
     let lent = ws.bytes() + std::mem::size_of_val(adjacency.edges());
     let mut renderer = Box::new(ZBufferRenderer::<Frac, EDGES, POLY>::new());
     let mut target = PackedFrame::new(w, h);
-    let mut probe = Collect {
-        width: w,
-        ids: vec![0; w * h],
-        lines: vec![0; w * h],
-    };
+    let mut probe = Collect::new(w, h);
     let start = Instant::now();
     let stats = renderer
         .render(
@@ -386,11 +393,7 @@ fn render_code<Frac: LeEqU32, const WORDS: usize>(
     type Engine<F, const W: usize> = CodeFillRenderer<F, W, ACTIVE_FACES, ACTIVE_EDGES, POLY>;
     let mut renderer = Box::new(Engine::<Frac, WORDS>::new());
     let mut target = PackedFrame::new(w, h);
-    let mut probe = Collect {
-        width: w,
-        ids: vec![0; w * h],
-        lines: vec![0; w * h],
-    };
+    let mut probe = Collect::new(w, h);
     // Bit-sliced rows: every pixel's code, up to WORDS words.
     let mut words = vec![
         0u32;

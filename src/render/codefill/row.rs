@@ -32,14 +32,7 @@ impl<
         y: u16,
         out: &mut [u16],
     ) -> Result<u32, Error> {
-        // Rows are scanned in order; a gap (none in practice) is walked through.
-        while self.row < y {
-            self.activate(ctx, vertices, order, self.row)?;
-            self.step_row();
-        }
-        self.activate(ctx, vertices, order, y)?;
-        self.peak_faces = self.peak_faces.max(self.live.len());
-        self.peak_edges = self.peak_edges.max(self.edges.len());
+        self.enter_row(ctx, vertices, order, y)?;
         let width = out.len() as u16;
         let row = i32::from(y);
         self.edges.move_to_row(row, ctx.s, width);
@@ -106,6 +99,25 @@ impl<
         }
         self.step_row();
         Ok(runs)
+    }
+
+    /// Brings the active faces and edges to row `y` (rows come in order; a gap, none
+    /// in practice, is walked through) and activates the faces that start there.
+    pub(super) fn enter_row(
+        &mut self,
+        ctx: &FrameCtx<'_, '_>,
+        vertices: &[ProjectedVertex],
+        order: &[u32],
+        y: u16,
+    ) -> Result<(), Error> {
+        while self.row < y {
+            self.activate(ctx, vertices, order, self.row)?;
+            self.step_row();
+        }
+        self.activate(ctx, vertices, order, y)?;
+        self.peak_faces = self.peak_faces.max(self.live.len());
+        self.peak_edges = self.peak_edges.max(self.edges.len());
+        Ok(())
     }
 
     /// Face `f` enters or leaves at the current crossing.

@@ -31,13 +31,7 @@ impl<
         out: &mut [u16],
         codes: &mut [u32],
     ) -> Result<u32, Error> {
-        while self.row < y {
-            self.activate(ctx, vertices, order, self.row)?;
-            self.step_row();
-        }
-        self.activate(ctx, vertices, order, y)?;
-        self.peak_faces = self.peak_faces.max(self.live.len());
-        self.peak_edges = self.peak_edges.max(self.edges.len());
+        self.enter_row(ctx, vertices, order, y)?;
         // The code is as wide as the faces active on the row.
         self.widest = self.widest.max(self.live.len());
         let width = out.len();
