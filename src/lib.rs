@@ -31,6 +31,7 @@ mod error;
 mod framebuffer;
 mod geometry;
 pub mod mesh;
+pub mod order;
 mod pattern;
 pub mod render;
 pub mod scan;
@@ -46,6 +47,7 @@ pub use geometry::{ScreenPoint, Viewport, GUARD_BAND_PX, MAX_SUBPIXEL_BITS, MAX_
 pub use mesh::{
     face_owns_edge, EdgeAdjacency, EdgeKind, HalfEdgeRecord, Mesh, MeshEdge, Viewpoint, MAX_FACES,
 };
+pub use order::{BspNode, BspStorage, BspTree};
 pub use pattern::Pattern;
 pub use render::{
     CodeFillRenderer, CodeWorkspace, Cull, DrawMode, MonoPalette, Palette, Settings, SolidPalette,

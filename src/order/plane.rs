@@ -1,0 +1,256 @@
+//! Planes, vertex classification and the work-stack records of the BSP build (f64).
+
+use crate::mesh::Mesh;
+
+/// Where a vertex lies relative to a plane, with the build's tolerance.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Side {
+    Front,
+    Back,
+    On,
+}
+
+/// A plane `n . p + d = 0` with an unnormalised normal `n`, and the square of the
+/// tolerance scaled by `|n|^2`, so that classifying needs no square root.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Plane {
+    pub n: [f64; 3],
+    pub d: f64,
+    /// `tolerance^2 * |n|^2`: a point with `(n . p + d)^2 <= limit` is on the plane.
+    pub limit: f64,
+}
+
+impl Plane {
+    /// The plane through the centroid of `points` with their Newell normal (summed as
+    /// the fan `(p_i - p_0) x (p_(i+1) - p_0)`, as [`Mesh::face_normal`] does, but in f64).
+    pub fn through(points: impl Iterator<Item = [f64; 3]>, tolerance_sq: f64) -> Self {
+        let mut corners = points;
+        let Some(origin) = corners.next() else {
+            return Self {
+                n: [0.0; 3],
+                d: 0.0,
+                limit: 0.0,
+            };
+        };
+        let mut n = [0.0f64; 3];
+        let mut sum = [0.0f64; 3];
+        let mut count = 1.0f64;
+        let mut previous: Option<[f64; 3]> = None;
+        for p in corners {
+            let e = sub(p, origin);
+            if let Some(q) = previous {
+                n = add(n, cross(q, e));
+            }
+            sum = add(sum, e);
+            count += 1.0;
+            previous = Some(e);
+        }
+        let centroid = add(origin, sum.map(|c| c / count));
+        let nn = dot(n, n);
+        Self {
+            n,
+            d: -dot(n, centroid),
+            limit: tolerance_sq * nn,
+        }
+    }
+
+    /// The plane of a work record: its whole source face, or the fan triangle
+    /// `(v0, v_fan, v_fan+1)` of a non-planar face (see [`Record`]).
+    pub fn of_record(mesh: &Mesh<'_>, word: u32, tolerance_sq: f64) -> Self {
+        let corners = mesh.face(Record::face(word));
+        let fan = Record::fan(word);
+        let vertices = mesh.vertices();
+        let position = move |i: &u32| vertices.get(*i as usize).map(|p| p.map(f64::from));
+        if fan == 0 {
+            Self::through(corners.iter().filter_map(position), tolerance_sq)
+        } else {
+            let triangle = [corners.first(), corners.get(fan), corners.get(fan + 1)];
+            Self::through(
+                triangle.into_iter().flatten().filter_map(position),
+                tolerance_sq,
+            )
+        }
+    }
+
+    /// Is the normal zero (a face of no area, which cannot split space)?
+    pub fn is_degenerate(&self) -> bool {
+        !(dot(self.n, self.n) > 0.0)
+    }
+
+    /// Signed distance times `|n|`.
+    pub fn distance(&self, p: [f32; 3]) -> f64 {
+        dot(self.n, p.map(f64::from)) + self.d
+    }
+
+    /// Side of a distance from [`Plane::distance`].
+    pub fn side_of(&self, s: f64) -> Side {
+        if s * s <= self.limit {
+            Side::On
+        } else if s > 0.0 {
+            Side::Front
+        } else {
+            Side::Back
+        }
+    }
+
+    /// The plane as `[n.x, n.y, n.z, d]`.
+    pub fn coefficients(&self) -> [f64; 4] {
+        [self.n[0], self.n[1], self.n[2], self.d]
+    }
+}
+
+/// How the vertices of one polygon fall around a plane.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub(super) struct Tally {
+    pub front: usize,
+    pub back: usize,
+    pub on: usize,
+    /// Edges going straight from front to back or back to front (each makes a split point).
+    pub crossings: usize,
+}
+
+/// What happens to a polygon at a node.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Fate {
+    /// It lies in the node's plane (or it is the splitter itself).
+    Node,
+    Front,
+    Back,
+    /// It is cut in two: the vertex counts of the halves and the new split points.
+    Split {
+        front: usize,
+        back: usize,
+        new: usize,
+    },
+}
+
+impl Tally {
+    /// Classifies the polygon `idx` (indices into `vertices`) against `plane`.
+    pub fn of(plane: &Plane, idx: &[u32], vertices: &[[f32; 3]]) -> Self {
+        let side = |i: u32| plane.side_of(plane.distance(vertex(vertices, i)));
+        let mut tally = Self::default();
+        let mut previous = idx.last().map(|&i| side(i));
+        for &i in idx {
+            let s = side(i);
+            match s {
+                Side::Front => tally.front += 1,
+                Side::Back => tally.back += 1,
+                Side::On => tally.on += 1,
+            }
+            if matches!(
+                (previous, s),
+                (Some(Side::Front), Side::Back) | (Some(Side::Back), Side::Front)
+            ) {
+                tally.crossings += 1;
+            }
+            previous = Some(s);
+        }
+        tally
+    }
+
+    /// The polygon's fate; the splitter always stays in its node.
+    pub fn fate(&self, is_splitter: bool) -> Fate {
+        if is_splitter || (self.front == 0 && self.back == 0) {
+            Fate::Node
+        } else if self.back == 0 {
+            Fate::Front
+        } else if self.front == 0 {
+            Fate::Back
+        } else {
+            Fate::Split {
+                front: self.front + self.on + self.crossings,
+                back: self.back + self.on + self.crossings,
+                new: self.crossings,
+            }
+        }
+    }
+}
+
+/// A vertex position; the origin for an index out of range (the build only makes
+/// valid indices, so this is never used, but it keeps every access panic-free).
+pub(super) fn vertex(vertices: &[[f32; 3]], i: u32) -> [f32; 3] {
+    vertices.get(i as usize).copied().unwrap_or([0.0; 3])
+}
+
+/// The point where edge `a`-`b` meets the plane, from the signed distances `sa`,
+/// `sb` of opposite signs. The endpoints are taken in index order, so the two faces
+/// sharing an edge get bit-identical split points from the same plane.
+pub(super) fn split_point(vertices: &[[f32; 3]], a: u32, sa: f64, b: u32, sb: f64) -> [f32; 3] {
+    let ((p, sp), (q, sq)) = if a <= b {
+        ((a, sa), (b, sb))
+    } else {
+        ((b, sb), (a, sa))
+    };
+    let p = vertex(vertices, p).map(f64::from);
+    let q = vertex(vertices, q).map(f64::from);
+    let denominator = sp - sq;
+    let t = if denominator == 0.0 {
+        0.5
+    } else {
+        (sp / denominator).clamp(0.0, 1.0)
+    };
+    // f64 to the nearest f32: the stored split point.
+    core::array::from_fn(|k| (p[k] + t * (q[k] - p[k])) as f32)
+}
+
+/// Work-stack records: `[word, len, idx_0 .. idx_len-1]`, where `word` holds the
+/// source face in its low 16 bits and, for a fan triangle of a non-planar face, the
+/// fan index `i >= 1` (triangle `v0, v_i, v_i+1`) in its high 16 bits.
+pub(super) struct Record;
+
+impl Record {
+    /// Words besides the vertex indices.
+    pub const HEAD: usize = 2;
+
+    pub fn face(word: u32) -> usize {
+        (word & 0xFFFF) as usize
+    }
+
+    pub fn fan(word: u32) -> usize {
+        (word >> 16) as usize
+    }
+}
+
+/// Iterates the records of a set: `(word, indices)`; stops at a malformed tail.
+#[derive(Debug, Clone)]
+pub(super) struct Records<'a> {
+    rest: &'a [u32],
+}
+
+impl<'a> Records<'a> {
+    pub fn new(words: &'a [u32]) -> Self {
+        Self { rest: words }
+    }
+}
+
+impl<'a> Iterator for Records<'a> {
+    type Item = (u32, &'a [u32]);
+
+    fn next(&mut self) -> Option<Self::Item> {
+        let (&word, rest) = self.rest.split_first()?;
+        let (&len, rest) = rest.split_first()?;
+        let idx = rest.get(..len as usize)?;
+        self.rest = rest.get(len as usize..)?;
+        Some((word, idx))
+    }
+}
+
+fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+pub(super) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
