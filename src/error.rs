@@ -68,6 +68,10 @@ pub enum Error<T = Infallible> {
     },
     /// The camera cannot make a view.
     BadCamera(CameraProblem),
+    /// A depth order given to the code-fill engine was not made for this mesh (its
+    /// vertices do not begin with the mesh's, or a surface has no source face or
+    /// rank).
+    DepthOrderMismatch,
     /// A row needs a wider surface code than the engine was compiled for.
     CodeTooWide {
         /// Bits the widest row needs.
@@ -120,6 +124,7 @@ impl Error<Infallible> {
             Error::EmptyMesh => Error::EmptyMesh,
             Error::TooManyFaces { faces, max } => Error::TooManyFaces { faces, max },
             Error::BadCamera(p) => Error::BadCamera(p),
+            Error::DepthOrderMismatch => Error::DepthOrderMismatch,
             Error::CodeTooWide { needed, capacity } => Error::CodeTooWide { needed, capacity },
             Error::Scheme(v) => Error::Scheme(v),
             Error::Target(never) => match never {},
@@ -161,6 +166,7 @@ impl<T: fmt::Debug> fmt::Display for Error<T> {
                 write!(f, "the mesh has {faces} faces, at most {max} are supported")
             }
             Error::BadCamera(p) => write!(f, "bad camera: {p:?}"),
+            Error::DepthOrderMismatch => f.write_str("the depth order was made for another mesh"),
             Error::CodeTooWide { needed, capacity } => write!(
                 f,
                 "a row needs a {needed}-bit surface code, {capacity} bits are compiled in"

@@ -50,8 +50,8 @@ pub use mesh::{
 pub use order::{BspNode, BspStorage, BspTree};
 pub use pattern::Pattern;
 pub use render::{
-    CodeFillRenderer, CodeWorkspace, Cull, DrawMode, MonoPalette, Palette, Settings, SolidPalette,
-    Stats, Workspace, ZBufferRenderer,
+    CodeFillRenderer, CodeWorkspace, Cull, DepthOrder, DrawMode, MonoPalette, Palette, Settings,
+    SolidPalette, Stats, Visibility, Workspace, ZBufferRenderer,
 };
 pub use scan::{FillRule, ScanConverter};
 pub use span::{ContiguousRows, FillSolid, Span, SpanSink, ROW_SEGMENTS};

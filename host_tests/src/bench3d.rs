@@ -21,13 +21,15 @@ use std::path::PathBuf;
 
 use fixed::types::extra::U4;
 use pbuffer::mesh::{EdgeAdjacency, Mesh};
+use pbuffer::order::BspTree;
 use pbuffer::render::{storage_rows, Depth, ProjectedVertex, RowCodes};
 use pbuffer::{
-    packed_len, Camera, CodeFillRenderer, CodeWorkspace, Error, MonoPalette, PackedFramebuffer,
-    Settings, Stats, Workspace, ZBufferRenderer,
+    packed_len, Camera, CodeFillRenderer, CodeWorkspace, DepthOrder, Error, MonoPalette,
+    PackedFramebuffer, Settings, Stats, Visibility, Workspace, ZBufferRenderer,
 };
 
 use crate::baseline::{prepare_baseline, render_prepared};
+use crate::bsp::with_bsp;
 use crate::callgrind::measured_region;
 use crate::fit::fit_camera;
 use crate::frame::{CameraSpec, MeshData, RenderSpec};
@@ -50,6 +52,8 @@ const POLY: usize = 64;
 /// Code-fill capacities as firmware would compile them: a 128-bit surface code, 256
 /// faces and 1024 edges active on one row.
 const CODE_WORDS: usize = 4;
+/// In a depth order the code is as wide as the faces active on a row: 512 bits.
+const ORDER_WORDS: usize = 16;
 const ACTIVE_FACES: usize = 256;
 const ACTIVE_EDGES: usize = 1024;
 /// Roomier (active faces, active edges), tried in order when the firmware capacities
@@ -61,9 +65,12 @@ const FACE_EDGES: usize = 64;
 /// A visibility engine of the table.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 pub enum Engine {
+    /// The code-fill engine in a BSP tree's depth order (weight-1 codes).
     CodeFill,
-    /// The code-fill engine with bit-sliced rows (`RowCodes::BitSliced`).
+    /// The same with bit-sliced rows (`RowCodes::BitSliced`).
     CodeFillSliced,
+    /// The code-fill engine without an order: planes where faces overlap.
+    Scanline,
     ZBuffer16,
     ZBuffer32,
     /// The f32 baseline of `crate::baseline` (always full frame).
@@ -79,12 +86,13 @@ pub struct Renderer {
 
 impl Renderer {
     /// The rows of each table, in order; the last is the baseline.
-    pub const ALL: [Renderer; 8] = [
+    pub const ALL: [Renderer; 9] = [
         Renderer::new(Engine::CodeFill, None),
         Renderer::new(Engine::CodeFill, Some(8)),
-        Renderer::new(Engine::CodeFill, Some(32)),
         Renderer::new(Engine::CodeFillSliced, None),
         Renderer::new(Engine::CodeFillSliced, Some(8)),
+        Renderer::new(Engine::Scanline, None),
+        Renderer::new(Engine::Scanline, Some(8)),
         Renderer::new(Engine::ZBuffer32, None),
         Renderer::new(Engine::ZBuffer16, Some(8)),
         Renderer::new(Engine::Baseline, None),
@@ -98,6 +106,7 @@ impl Renderer {
         let engine = match self.engine {
             Engine::CodeFill => "codefill",
             Engine::CodeFillSliced => "codefill-sliced",
+            Engine::Scanline => "scanline",
             Engine::ZBuffer16 => "zbuffer16",
             Engine::ZBuffer32 => "zbuffer32",
             Engine::Baseline => "baseline",
@@ -111,10 +120,13 @@ impl Renderer {
     fn label(self) -> String {
         let engine = match self.engine {
             Engine::CodeFill => format!(
-                "CodeFillRenderer<U4, {CODE_WORDS}, {ACTIVE_FACES}, {ACTIVE_EDGES}, {POLY}>"
+                "CodeFillRenderer<U4, {ORDER_WORDS}, {ACTIVE_FACES}, {ACTIVE_EDGES}, {POLY}>, BSP order"
             ),
             Engine::CodeFillSliced => format!(
-                "CodeFillRenderer<U4, {CODE_WORDS}, {ACTIVE_FACES}, {ACTIVE_EDGES}, {POLY}>, bit-sliced rows"
+                "CodeFillRenderer<U4, {ORDER_WORDS}, {ACTIVE_FACES}, {ACTIVE_EDGES}, {POLY}>, BSP order, bit-sliced rows"
+            ),
+            Engine::Scanline => format!(
+                "CodeFillRenderer<U4, {CODE_WORDS}, {ACTIVE_FACES}, {ACTIVE_EDGES}, {POLY}>, planes"
             ),
             Engine::ZBuffer16 => format!("ZBufferRenderer<U4, {FACE_EDGES}, {POLY}>, u16 depth"),
             Engine::ZBuffer32 => format!("ZBufferRenderer<U4, {FACE_EDGES}, {POLY}>, u32 depth"),
@@ -254,15 +266,51 @@ fn draw_sized<const W: usize, const H: usize, const N: usize>(
         settings: pipeline::settings(&spec).map_err(Refusal::Setup)?,
     };
     let band = renderer.band.unwrap_or(H);
-    let sl = renderer.engine == Engine::CodeFillSliced;
-    let drawn = match (renderer.engine, rung) {
-        (Engine::ZBuffer16, _) => z_buffer::<W, H, N, u16>(&scene, band),
-        (Engine::ZBuffer32, _) => z_buffer::<W, H, N, u32>(&scene, band),
-        (_, None) => code_fill::<W, H, N, ACTIVE_FACES, ACTIVE_EDGES>(&scene, band, sl),
-        (_, Some(0)) => code_fill::<W, H, N, { ROOMIER[0].0 }, { ROOMIER[0].1 }>(&scene, band, sl),
-        (_, Some(1)) => code_fill::<W, H, N, { ROOMIER[1].0 }, { ROOMIER[1].1 }>(&scene, band, sl),
-        (_, Some(2)) => code_fill::<W, H, N, { ROOMIER[2].0 }, { ROOMIER[2].1 }>(&scene, band, sl),
-        (_, Some(_)) => code_fill::<W, H, N, { ROOMIER[3].0 }, { ROOMIER[3].1 }>(&scene, band, sl),
+    match renderer.engine {
+        Engine::ZBuffer16 => z_buffer::<W, H, N, u16>(&scene, band).map_err(Refusal::Library),
+        Engine::ZBuffer32 => z_buffer::<W, H, N, u32>(&scene, band).map_err(Refusal::Library),
+        Engine::Scanline => code_fill_rung::<W, H, N, CODE_WORDS>(&scene, None, band, false, rung),
+        _ => {
+            let sliced = renderer.engine == Engine::CodeFillSliced;
+            // The tree is built once per mesh, before the measured region; its kept
+            // storage counts as working RAM.
+            with_bsp(&scene.mesh, |tree, figures| {
+                code_fill_rung::<W, H, N, ORDER_WORDS>(
+                    &scene,
+                    Some((tree, figures.kept_bytes)),
+                    band,
+                    sliced,
+                    rung,
+                )
+            })
+            .map_err(Refusal::Setup)?
+        }
+    }
+}
+
+/// [`code_fill`] with the firmware capacities or a [`ROOMIER`] rung.
+fn code_fill_rung<const W: usize, const H: usize, const N: usize, const WORDS: usize>(
+    scene: &LibraryScene<'_, '_>,
+    bsp: Option<(&BspTree<'_>, usize)>,
+    band: usize,
+    sliced: bool,
+    rung: Option<usize>,
+) -> Outcome {
+    let (s, b) = (sliced, band);
+    let drawn = match rung {
+        None => code_fill::<W, H, N, WORDS, ACTIVE_FACES, ACTIVE_EDGES>(scene, bsp, b, s),
+        Some(0) => {
+            code_fill::<W, H, N, WORDS, { ROOMIER[0].0 }, { ROOMIER[0].1 }>(scene, bsp, b, s)
+        }
+        Some(1) => {
+            code_fill::<W, H, N, WORDS, { ROOMIER[1].0 }, { ROOMIER[1].1 }>(scene, bsp, b, s)
+        }
+        Some(2) => {
+            code_fill::<W, H, N, WORDS, { ROOMIER[2].0 }, { ROOMIER[2].1 }>(scene, bsp, b, s)
+        }
+        Some(_) => {
+            code_fill::<W, H, N, WORDS, { ROOMIER[3].0 }, { ROOMIER[3].1 }>(scene, bsp, b, s)
+        }
     };
     drawn.map_err(Refusal::Library)
 }
@@ -271,21 +319,27 @@ fn code_fill<
     const W: usize,
     const H: usize,
     const N: usize,
+    const WORDS: usize,
     const FACES: usize,
     const EDGES: usize,
 >(
     scene: &LibraryScene<'_, '_>,
+    bsp: Option<(&BspTree<'_>, usize)>,
     band: usize,
     sliced: bool,
 ) -> Result<Drawn, Error<Infallible>> {
-    type Engine<const F: usize, const E: usize> = CodeFillRenderer<U4, CODE_WORDS, F, E, POLY>;
-    // Bit-sliced rows: every pixel's code, up to CODE_WORDS words.
-    let mut words = vec![0u32; if sliced { W * CODE_WORDS } else { 0 }];
+    type Engine<const C: usize, const F: usize, const E: usize> =
+        CodeFillRenderer<U4, C, F, E, POLY>;
+    // Bit-sliced rows: every pixel's code, up to WORDS words.
+    let mut words = vec![0u32; if sliced { W * WORDS } else { 0 }];
     let faces = scene.mesh.face_count();
-    let mut vertices = vec![ProjectedVertex::default(); scene.mesh.vertices().len()];
+    let surfaces = bsp.map_or(scene.mesh, |(tree, _)| tree.fragments());
+    let mut vertices = vec![ProjectedVertex::default(); surfaces.vertices().len()];
     let mut drawn = vec![0u32; faces.div_ceil(32)];
     let mut features = vec![0u32; scene.adjacency.edges().len().div_ceil(32)];
-    let mut order = vec![0u32; faces];
+    let mut order = vec![0u32; surfaces.face_count()];
+    let mut rank = vec![0u32; bsp.map_or(0, |(tree, _)| tree.fragment_count())];
+    let mut stack = vec![0u32; bsp.map_or(0, |(tree, _)| tree.depth())];
     let stored = usize::from(storage_rows(band as u16, H as u16));
     let mut ids = vec![0u16; W * stored];
     let mut lines = vec![0u32; 2 * W.div_ceil(32) * band];
@@ -299,9 +353,12 @@ fn code_fill<
     };
     let working_ram = ws.bytes()
         + size_of_val(scene.adjacency.edges())
-        + size_of::<Engine<FACES, EDGES>>()
-        + size_of_val(words.as_slice());
-    let mut renderer = Box::new(Engine::<FACES, EDGES>::new());
+        + size_of::<Engine<WORDS, FACES, EDGES>>()
+        + size_of_val(words.as_slice())
+        + bsp.map_or(0, |(_, kept)| kept)
+        + size_of_val(rank.as_slice())
+        + size_of_val(stack.as_slice());
+    let mut renderer = Box::new(Engine::<WORDS, FACES, EDGES>::new());
     let mut fb = Box::new(PackedFramebuffer::<W, H, N>::new());
     let palette = MonoPalette::default();
     let mut result = None;
@@ -311,13 +368,29 @@ fn code_fill<
         } else {
             RowCodes::Crossings
         };
-        result = Some(renderer.render_rows(
+        let visibility = match bsp {
+            Some((tree, _)) => {
+                let view = scene.camera.viewpoint();
+                if let Err(e) = tree.rank_front_to_back(&view, &mut stack, &mut rank) {
+                    result = Some(Err(e.widen()));
+                    return;
+                }
+                Visibility::Order(DepthOrder {
+                    surfaces: tree.fragments(),
+                    source: tree.source(),
+                    rank: &rank,
+                })
+            }
+            None => Visibility::Planes,
+        };
+        result = Some(renderer.render_with(
             &scene.mesh,
             &scene.adjacency,
             &scene.camera,
             &scene.settings,
             &mut ws,
             codes,
+            visibility,
             &palette,
             &mut *fb,
             &mut (),

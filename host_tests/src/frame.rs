@@ -73,13 +73,42 @@ pub enum ModeSpec {
 /// Visibility engine.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum EngineSpec {
-    /// Modulo-2 surface codes per row, no depth buffer.
+    /// Modulo-2 surface codes per row in a BSP tree's depth order (weight-1 codes,
+    /// priority encoder), no depth buffer.
     #[default]
     CodeFill,
     /// The same engine with every pixel's code in words (`RowCodes::BitSliced`).
     CodeFillSliced,
+    /// The code-fill engine without an order: planes compared where faces overlap
+    /// (the scan-line method of notes 004).
+    Scanline,
     /// Depth buffer in bands.
     ZBuffer,
+}
+
+impl EngineSpec {
+    /// Every engine, in the order the `--engine` help lists them.
+    pub const ALL: [EngineSpec; 4] = [
+        EngineSpec::CodeFill,
+        EngineSpec::CodeFillSliced,
+        EngineSpec::Scanline,
+        EngineSpec::ZBuffer,
+    ];
+
+    /// The engine's `--engine` name.
+    pub fn name(self) -> &'static str {
+        match self {
+            EngineSpec::CodeFill => "codefill",
+            EngineSpec::CodeFillSliced => "codefill-sliced",
+            EngineSpec::Scanline => "scanline",
+            EngineSpec::ZBuffer => "zbuffer",
+        }
+    }
+
+    /// The engine named `name`.
+    pub fn by_name(name: &str) -> Option<EngineSpec> {
+        EngineSpec::ALL.into_iter().find(|e| e.name() == name)
+    }
 }
 
 /// Render settings.

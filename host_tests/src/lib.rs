@@ -1,6 +1,7 @@
 //! Host-side checks for pbuffer: the f64 reference, random scene generators, images.
 pub mod baseline;
 pub mod bench3d;
+pub mod bsp;
 pub mod callgrind;
 pub mod cli;
 pub mod fit;

@@ -159,13 +159,11 @@ pub fn next_mode(m: ModeSpec) -> ModeSpec {
     MODES[(i + 1) % MODES.len()]
 }
 
-/// The next engine: code fill, code fill with bit-sliced rows, Z-buffer.
+/// The next engine: code fill, code fill with bit-sliced rows, scan-line, Z-buffer.
 pub fn other_engine(e: EngineSpec) -> EngineSpec {
-    match e {
-        EngineSpec::CodeFill => EngineSpec::CodeFillSliced,
-        EngineSpec::CodeFillSliced => EngineSpec::ZBuffer,
-        EngineSpec::ZBuffer => EngineSpec::CodeFill,
-    }
+    let all = EngineSpec::ALL;
+    let at = all.iter().position(|&x| x == e).unwrap_or(0);
+    all[(at + 1) % all.len()]
 }
 
 /// The `--mode` value of a mode.
@@ -181,11 +179,7 @@ pub fn mode_name(m: ModeSpec) -> &'static str {
 
 /// The `--engine` value of an engine.
 pub fn engine_name(e: EngineSpec) -> &'static str {
-    match e {
-        EngineSpec::CodeFill => "codefill",
-        EngineSpec::CodeFillSliced => "codefill-sliced",
-        EngineSpec::ZBuffer => "zbuffer",
-    }
+    e.name()
 }
 
 fn look_name(l: Look) -> &'static str {

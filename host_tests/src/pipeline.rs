@@ -5,12 +5,14 @@ use std::time::Instant;
 use embedded_graphics::pixelcolor::BinaryColor;
 use fixed::types::extra::{LeEqU32, U0, U1, U10, U11, U12, U2, U3, U4, U5, U6, U7, U8, U9};
 use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
+use pbuffer::order::BspTree;
 use pbuffer::render::{Depth, FrameProbe, ProjectedVertex, RowCodes};
 use pbuffer::{
-    Camera, CodeFillRenderer, CodeWorkspace, Cull, DrawMode, MonoPalette, Pattern, Projection,
-    Settings, Span, SpanSink, Stats, Viewport, Workspace, ZBufferRenderer,
+    Camera, CodeFillRenderer, CodeWorkspace, Cull, DepthOrder, DrawMode, MonoPalette, Pattern,
+    Projection, Settings, Span, SpanSink, Stats, Viewport, Visibility, Workspace, ZBufferRenderer,
 };
 
+use crate::bsp::{with_bsp, BspFigures};
 use crate::frame::{
     CameraSpec, CullSpec, EngineSpec, Frame, MeshData, ModeSpec, ProjectionSpec, RenderSpec,
 };
@@ -239,7 +241,7 @@ fn render_s<Frac: LeEqU32>(
 ) -> Result<Frame, String> {
     if matches!(
         spec.engine,
-        EngineSpec::CodeFill | EngineSpec::CodeFillSliced
+        EngineSpec::CodeFill | EngineSpec::CodeFillSliced | EngineSpec::Scanline
     ) {
         return match render_code::<Frac, 4>(mesh, cam, spec) {
             Err(e) if e.contains("surface code") => render_code::<Frac, 32>(mesh, cam, spec),
@@ -357,7 +359,10 @@ fn frame(
     }
 }
 
-/// The code-fill engine: no depth buffer; ids for the band and its apron.
+/// The code-fill engine: no depth buffer; ids for the band and its apron. `codefill`
+/// and `codefill-sliced` render in the depth order of a BSP tree built once for the
+/// mesh (its build is timed apart, its storage counted in the working RAM);
+/// `scanline` compares planes where faces overlap.
 fn render_code<Frac: LeEqU32, const WORDS: usize>(
     data: &MeshData,
     cam: &CameraSpec,
@@ -366,18 +371,34 @@ fn render_code<Frac: LeEqU32, const WORDS: usize>(
     let arrays = MeshArrays::new(data);
     let mesh = Mesh::new(&arrays.vertices, &arrays.indices, &arrays.offsets)
         .map_err(|e| format!("mesh: {e}"))?;
-    let mut storage = AdjacencyStorage::new(&arrays);
+    if spec.engine == EngineSpec::Scanline {
+        return render_code_with::<Frac, WORDS>(&arrays, &mesh, None, cam, spec);
+    }
+    with_bsp(&mesh, |tree, figures| {
+        render_code_with::<Frac, WORDS>(&arrays, &mesh, Some((tree, figures)), cam, spec)
+    })?
+}
+
+fn render_code_with<Frac: LeEqU32, const WORDS: usize>(
+    arrays: &MeshArrays,
+    mesh: &Mesh<'_>,
+    bsp: Option<(&BspTree<'_>, BspFigures)>,
+    cam: &CameraSpec,
+    spec: &RenderSpec,
+) -> Result<Frame, String> {
+    let mut storage = AdjacencyStorage::new(arrays);
     let build_bytes = storage.build_bytes();
-    let adjacency = storage.build(&mesh, spec.crease_deg)?;
+    let adjacency = storage.build(mesh, spec.crease_deg)?;
     let camera = camera(cam)?;
     let settings = settings(spec)?;
     let (w, h) = (spec.width, spec.height);
     let band = spec.band.clamp(1, h.max(1));
     let row_words = w.div_ceil(32);
-    let mut vertices = vec![ProjectedVertex::default(); arrays.vertices.len()];
+    let surfaces = bsp.map_or(*mesh, |(tree, _)| tree.fragments());
+    let mut vertices = vec![ProjectedVertex::default(); surfaces.vertices().len()];
     let mut drawn = vec![0u32; mesh.face_count().div_ceil(32)];
     let mut features = vec![0u32; adjacency.edges().len().div_ceil(32)];
-    let mut order = vec![0u32; mesh.face_count()];
+    let mut order = vec![0u32; surfaces.face_count()];
     let stored = usize::from(pbuffer::render::storage_rows(band as u16, h as u16));
     let mut ids = vec![0u16; w * stored];
     let mut lines = vec![0u32; 2 * row_words * band];
@@ -395,47 +416,62 @@ fn render_code<Frac: LeEqU32, const WORDS: usize>(
     let mut target = PackedFrame::new(w, h);
     let mut probe = Collect::new(w, h);
     // Bit-sliced rows: every pixel's code, up to WORDS words.
-    let mut words = vec![
-        0u32;
-        if spec.engine == EngineSpec::CodeFillSliced {
-            w * WORDS
-        } else {
-            0
-        }
-    ];
-    let codes = if spec.engine == EngineSpec::CodeFillSliced {
+    let sliced = spec.engine == EngineSpec::CodeFillSliced;
+    let mut words = vec![0u32; if sliced { w * WORDS } else { 0 }];
+    let codes = if sliced {
         RowCodes::BitSliced(&mut words)
     } else {
         RowCodes::Crossings
     };
+    // The depth order: one rank per fragment, and the walk's stack.
+    let mut rank = vec![0u32; bsp.map_or(0, |(tree, _)| tree.fragment_count())];
+    let mut stack = vec![0u32; bsp.map_or(0, |(tree, _)| tree.depth())];
     let start = Instant::now();
+    let visibility = match bsp {
+        Some((tree, _)) => {
+            tree.rank_front_to_back(&camera.viewpoint(), &mut stack, &mut rank)
+                .map_err(|e| format!("depth order: {e}"))?;
+            Visibility::Order(DepthOrder {
+                surfaces: tree.fragments(),
+                source: tree.source(),
+                rank: &rank,
+            })
+        }
+        None => Visibility::Planes,
+    };
     let stats = renderer
-        .render_rows(
-            &mesh,
+        .render_with(
+            mesh,
             &adjacency,
             &camera,
             &settings,
             &mut ws,
             codes,
+            visibility,
             &MonoPalette::default(),
             &mut target,
             &mut probe,
         )
         .map_err(|e| format!("render: {e}"))?;
     let time_us = start.elapsed().as_micros() as u64;
-    let lent = lent + std::mem::size_of_val(words.as_slice());
+    let order_bytes = bsp.map_or(0, |(_, f)| f.kept_bytes)
+        + std::mem::size_of_val(rank.as_slice())
+        + std::mem::size_of_val(stack.as_slice());
+    let lent = lent + std::mem::size_of_val(words.as_slice()) + order_bytes;
     // The engine this frame needed: its peak active faces and edges, not the host's
     // capacities.
     let working = lent
         + Engine::<Frac, WORDS>::bytes_for(stats.peak_faces as usize, stats.peak_edges as usize);
-    Ok(frame(
-        w,
-        h,
-        probe,
-        target,
-        &stats,
-        working,
-        build_bytes,
-        time_us,
-    ))
+    let mut frame = frame(w, h, probe, target, &stats, working, build_bytes, time_us);
+    if let Some((_, f)) = bsp {
+        frame.stats.extend([
+            ("bsp_fragments".into(), f.fragments as u64),
+            ("bsp_splits".into(), f.splits as u64),
+            ("bsp_depth".into(), f.depth as u64),
+            ("bsp_bytes".into(), f.kept_bytes as u64),
+            ("bsp_build_work_bytes".into(), f.work_bytes as u64),
+            ("bsp_build_us".into(), f.build_us),
+        ]);
+    }
+    Ok(frame)
 }

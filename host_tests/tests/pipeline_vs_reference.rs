@@ -48,6 +48,7 @@ fn run_scene(
     for mode in [ModeSpec::Surfaces, ModeSpec::Dashed] {
         for (engine, band, depth_bits) in [
             (EngineSpec::CodeFill, height, 32),
+            (EngineSpec::Scanline, height, 32),
             (EngineSpec::CodeFillSliced, 8, 32),
             (EngineSpec::ZBuffer, height, 32),
             (EngineSpec::ZBuffer, 8, 16),
@@ -66,11 +67,7 @@ fn run_scene(
                 } else {
                     "dash"
                 },
-                match engine {
-                    EngineSpec::CodeFill => "codefill",
-                    EngineSpec::CodeFillSliced => "codefill-sliced",
-                    EngineSpec::ZBuffer => "zbuffer",
-                },
+                engine.name(),
                 if engine == EngineSpec::ZBuffer {
                     format!(" depth {depth_bits}")
                 } else {
@@ -128,11 +125,16 @@ fn run_scene(
 
 /// The one measured deviation from the limits, kept visible and bounded
 /// rather than hidden: beetle at 400x240 misses 1.18% of the reference's hidden-edge
-/// length (limit 1%), around one vertex where seven edges meet and the library draws
-/// an edge visible through its own face that the reference does not draw there (an
-/// f32 versus f64 facing or crease decision on a nearly edge-on face). Only that
-/// metric, only that scene, and only up to 1.5% is tolerated; everything else must
-/// pass. Returns the explanation when `m` fails in exactly that known way.
+/// length (limit 1%). Traced (13 px of 1099): all of it lies on four creases of
+/// face 1337, a sliver seen edge-on from behind, within two pixels of vertex 220
+/// where seven edges meet. The reference hides them all. The library hides edge
+/// (220, 230) at most of its pixels, but edge (220, 793) belongs to face 1342, the
+/// nearest face at those pixel centres, so it is drawn visible through its own face
+/// there (as it must be), and a visible pixel wins over the hidden one under it.
+/// A pixel-resolution line test cannot separate edges less than a pixel apart whose
+/// visibility differs. Only that metric, only that scene, and only up to 1.5% is
+/// tolerated; everything else must pass. Returns the explanation when `m` fails in
+/// exactly that known way.
 fn known_deviation(label: &str, m: &SceneMetrics) -> Option<&'static str> {
     let l = m.lines.as_ref()?;
     let only_hidden_length = m.surfaces.is_none()

@@ -19,7 +19,7 @@ mod zbuffer;
 use embedded_graphics_core::pixelcolor::BinaryColor;
 use heapless::Vec;
 
-pub use codefill::{CodeFillRenderer, CodeWorkspace, RowCodes};
+pub use codefill::{CodeFillRenderer, CodeWorkspace, DepthOrder, RowCodes, Visibility};
 pub use compose::{FrameProbe, MonoPalette, Palette, SolidPalette};
 pub use transform::{ClipVertex, ProjectedVertex, ScreenVertex};
 pub use zband::Depth;
@@ -206,11 +206,13 @@ fn band_rows(viewport: Viewport, samples: usize, line_words: usize) -> Result<u1
 }
 
 /// The shared start of a frame: checks the lent per-frame storage, transforms every
-/// vertex, marks the drawn faces and this view's feature edges, and counts them in
-/// `stats`.
+/// vertex of `positions` (the mesh's vertices, or a depth order's fragment vertices,
+/// which begin with them), marks the drawn faces and this view's feature edges, and
+/// counts them in `stats`.
 #[allow(clippy::too_many_arguments)]
 fn begin_frame<'f, 'm>(
     mesh: &'f Mesh<'m>,
+    positions: &[[f32; 3]],
     edges: &EdgeAdjacency<'_>,
     camera: &Camera,
     settings: &Settings,
@@ -222,16 +224,15 @@ fn begin_frame<'f, 'm>(
     stats: &mut Stats,
 ) -> Result<FrameCtx<'f, 'm>, Error> {
     let faces = mesh.face_count();
-    need(mesh.vertices().len(), vertices.len())?;
+    need(positions.len().max(mesh.vertices().len()), vertices.len())?;
     need(faces.div_ceil(32), drawn.len())?;
     need(edges.edges().len().div_ceil(32), features.len())?;
-    let max_abs = mesh
-        .vertices()
+    let max_abs = positions
         .iter()
         .flatten()
         .fold(0.0f32, |m, c| m.max(c.abs()));
     let view = FixedView::new(camera, max_abs, viewport.width, viewport.height, s)?;
-    for (slot, p) in vertices.iter_mut().zip(mesh.vertices()) {
+    for (slot, p) in vertices.iter_mut().zip(positions) {
         let clip = view.clip(*p);
         let outside = view.outcode(&clip);
         let screen = if outside == 0 {
@@ -283,8 +284,18 @@ fn face_polygon<const POLY: usize>(
     f: usize,
     out: &mut Vec<ScreenVertex, POLY>,
 ) -> Result<bool, Error> {
+    index_polygon(ctx, vertices, ctx.mesh.face(f), out)
+}
+
+/// The polygon with vertex indices `idx` (into `vertices`) clipped and projected
+/// into `out`; false when nothing of it is in view.
+fn index_polygon<const POLY: usize>(
+    ctx: &FrameCtx<'_, '_>,
+    vertices: &[ProjectedVertex],
+    idx: &[u32],
+    out: &mut Vec<ScreenVertex, POLY>,
+) -> Result<bool, Error> {
     out.clear();
-    let idx = ctx.mesh.face(f);
     let (mut any, mut all) = (0u8, 0xFFu8);
     for &v in idx {
         let o = vertices.get(v as usize).map_or(0xFF, |p| p.outside);

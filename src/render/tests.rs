@@ -278,6 +278,15 @@ fn stack(n: u32) -> (Vec<[f32; 3]>, Vec<u32>, Vec<u32>) {
 
 /// Renders `mesh` head-on at 96x64 with the code-fill engine of `WORDS` code words.
 fn code_fill<const WORDS: usize, const EDGES: usize>(mesh: &Mesh<'_>) -> Result<Stats, Error> {
+    code_fill_with::<WORDS, EDGES>(mesh, Visibility::Planes, &mut ())
+}
+
+/// [`code_fill`] with a way to find the nearest face and a probe.
+fn code_fill_with<const WORDS: usize, const EDGES: usize>(
+    mesh: &Mesh<'_>,
+    visibility: Visibility<'_>,
+    probe: &mut impl FrameProbe,
+) -> Result<Stats, Error> {
     let mut weld = vec![0u32; mesh.vertices().len()];
     let mut scratch = vec![HalfEdgeRecord::default(); mesh.indices().len()];
     let mut store = vec![MeshEdge::default(); mesh.indices().len()];
@@ -293,10 +302,14 @@ fn code_fill<const WORDS: usize, const EDGES: usize>(mesh: &Mesh<'_>) -> Result<
     )
     .unwrap();
     let mut fb = PackedFramebuffer::<96, 64, { crate::packed_len(96, 64) }>::new();
-    let mut vertices = vec![ProjectedVertex::default(); mesh.vertices().len()];
+    let surfaces = match &visibility {
+        Visibility::Order(order) => order.surfaces,
+        Visibility::Planes => *mesh,
+    };
+    let mut vertices = vec![ProjectedVertex::default(); surfaces.vertices().len()];
     let mut drawn = vec![0u32; mesh.face_count().div_ceil(32)];
     let mut features = vec![0u32; adj.edges().len().div_ceil(32)];
-    let mut order = vec![0u32; mesh.face_count()];
+    let mut order = vec![0u32; surfaces.face_count()];
     let mut ids = vec![0u16; 96 * 10];
     let mut lines = vec![0u32; 2 * 3 * 8];
     let mut ws = CodeWorkspace {
@@ -308,16 +321,89 @@ fn code_fill<const WORDS: usize, const EDGES: usize>(mesh: &Mesh<'_>) -> Result<
         lines: &mut lines,
     };
     let settings = Settings::default();
-    CodeFillRenderer::<U4, WORDS, 64, EDGES, 16>::new().render(
+    CodeFillRenderer::<U4, WORDS, 64, EDGES, 16>::new().render_with(
         mesh,
         &adj,
         &camera,
         &settings,
         &mut ws,
+        RowCodes::Crossings,
+        visibility,
         &MonoPalette::default(),
         &mut fb,
-        &mut (),
+        probe,
     )
+}
+
+/// The face id (0 none, else 1 + face) at pixel (48, 32).
+#[derive(Default)]
+struct CentreId(u16);
+
+impl FrameProbe for CentreId {
+    fn row(&mut self, y: u16, ids: &[u16], _: &[u32], _: &[u32]) {
+        if y == 32 {
+            self.0 = ids[48];
+        }
+    }
+}
+
+#[test]
+fn a_depth_order_decides_the_nearest_face_by_its_lowest_code_bit() {
+    // Three squares stacked along z, square 0 nearest: the planes show face 0; an
+    // order that ranks square 2 first shows square 2, with no depth compared.
+    let (v, idx, off) = stack(3);
+    let mesh = Mesh::new(&v, &idx, &off).unwrap();
+    let source = [0u16, 1, 2];
+    let mut seen = [0u16; 3];
+    for (k, rank) in [[0u32, 1, 2], [2, 0, 1], [1, 2, 0]].iter().enumerate() {
+        let order = DepthOrder {
+            surfaces: mesh,
+            source: &source,
+            rank,
+        };
+        let mut centre = CentreId::default();
+        let stats = code_fill_with::<1, 64>(&mesh, Visibility::Order(order), &mut centre).unwrap();
+        assert_eq!(stats.code_bits, 3, "one bit per face on the row");
+        seen[k] = centre.0;
+    }
+    assert_eq!(seen, [1, 2, 3]);
+    let mut centre = CentreId::default();
+    code_fill_with::<1, 64>(&mesh, Visibility::Planes, &mut centre).unwrap();
+    assert_eq!(centre.0, 1);
+}
+
+#[test]
+fn a_depth_order_made_for_another_mesh_is_an_error() {
+    let (v, idx, off) = stack(3);
+    let mesh = Mesh::new(&v, &idx, &off).unwrap();
+    let (v2, idx2, off2) = stack(2);
+    let other = Mesh::new(&v2, &idx2, &off2).unwrap();
+    let source = [0u16, 1, 2];
+    let rank = [0u32, 1, 2];
+    let orders = [
+        // Vertices of another mesh.
+        DepthOrder {
+            surfaces: other,
+            source: &source[..2],
+            rank: &rank[..2],
+        },
+        // A rank missing.
+        DepthOrder {
+            surfaces: mesh,
+            source: &source,
+            rank: &rank[..2],
+        },
+        // A source face the mesh does not have.
+        DepthOrder {
+            surfaces: mesh,
+            source: &[0, 1, 3],
+            rank: &rank,
+        },
+    ];
+    for order in orders {
+        let got = code_fill_with::<1, 64>(&mesh, Visibility::Order(order), &mut ());
+        assert_eq!(got, Err(Error::DepthOrderMismatch));
+    }
 }
 
 #[test]

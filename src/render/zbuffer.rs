@@ -79,6 +79,7 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
         };
         let ctx = begin_frame(
             mesh,
+            mesh.vertices(),
             edges,
             camera,
             settings,

@@ -39,7 +39,10 @@ fn draw_rows(view: &View, model: &'static str) -> Vec<Row> {
             let outcome = draw(view, renderer, None);
             let refused = matches!(outcome, Err(Refusal::Library(_)));
             let roomier = (refused
-                && matches!(renderer.engine, Engine::CodeFill | Engine::CodeFillSliced))
+                && matches!(
+                    renderer.engine,
+                    Engine::CodeFill | Engine::CodeFillSliced | Engine::Scanline
+                ))
             .then(|| {
                 (0..ROOMIER.len())
                     .find_map(|i| draw(view, renderer, Some(i)).ok().map(|d| (ROOMIER[i], d)))

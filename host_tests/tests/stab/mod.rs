@@ -24,11 +24,7 @@ pub struct Config {
 
 impl Config {
     pub fn label(&self) -> String {
-        let engine = match self.engine {
-            EngineSpec::CodeFill => "codefill",
-            EngineSpec::CodeFillSliced => "codefill-sliced",
-            EngineSpec::ZBuffer => "zbuffer",
-        };
+        let engine = self.engine.name();
         let band = if self.band == 0 {
             "full".to_string()
         } else {
@@ -38,11 +34,16 @@ impl Config {
     }
 }
 
-/// Code fill (both row representations) and the 32-bit Z-buffer: the engines that
+/// Code fill (both row representations), scan-line and the 32-bit Z-buffer: the engines that
 /// must match the reference on every case of the suite.
-pub const EXACT: [Config; 4] = [
+pub const EXACT: [Config; 5] = [
     Config {
         engine: EngineSpec::CodeFill,
+        band: 0,
+        depth_bits: 32,
+    },
+    Config {
+        engine: EngineSpec::Scanline,
         band: 0,
         depth_bits: 32,
     },

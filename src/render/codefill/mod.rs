@@ -28,7 +28,7 @@ use super::compose::{self, FrameProbe, Palette};
 use super::lines::{line_pass, LineMasks};
 use super::transform::{ProjectedVertex, ScreenVertex};
 use super::zband::{IdBand, RowPlane};
-use super::{band_rows, begin_frame, bit, face_polygon, need, FrameCtx, Settings, Stats};
+use super::{band_rows, begin_frame, bit, index_polygon, need, FrameCtx, Settings, Stats};
 use crate::camera::Camera;
 use crate::geometry::Subpixel;
 use crate::mesh::{EdgeAdjacency, Mesh};
@@ -81,6 +81,77 @@ pub enum RowCodes<'s> {
     BitSliced(&'s mut [u32]),
 }
 
+/// How the code-fill engine finds the nearest face where faces overlap.
+#[derive(Debug, Clone, Copy)]
+pub enum Visibility<'o> {
+    /// The scan-line method of notes 004: where the code holds two or more faces,
+    /// their planes are compared at the run's ends and the run is split where one
+    /// overtakes another. Needs no order; the code is as wide as the most faces
+    /// over one pixel.
+    Planes,
+    /// A front-to-back order of the mesh's faces, or of fragments of them (a BSP
+    /// tree's): the faces active on a row take weight-1 codes in that order, and the
+    /// lowest bit set in a pixel's code names its nearest face (the priority encoder
+    /// of paper 003, scheme 3). No depth is compared at all; the code is as wide as
+    /// the faces active on one row.
+    Order(DepthOrder<'o>),
+}
+
+/// Surfaces in a front-to-back order: the fill pass scans `surfaces` (the mesh's
+/// faces or fragments of them) and reports each as its source face.
+#[derive(Debug, Clone, Copy)]
+pub struct DepthOrder<'o> {
+    /// The surfaces: their vertices begin with the mesh's vertices, bit for bit
+    /// (so the mesh's indices still hold), followed by any new ones.
+    pub surfaces: Mesh<'o>,
+    /// `source[s]`: the mesh face surface `s` lies in.
+    pub source: &'o [u16],
+    /// `rank[s]`: surface `s`'s place front to back (lower is nearer; equal ranks
+    /// go by surface index).
+    pub rank: &'o [u32],
+}
+
+impl DepthOrder<'_> {
+    /// Whether this order was made for `mesh`: its vertices begin with the mesh's,
+    /// every surface has a source face of the mesh and a rank.
+    fn fits(&self, mesh: &Mesh<'_>) -> bool {
+        let n = self.surfaces.face_count();
+        let v = mesh.vertices();
+        self.source.len() >= n
+            && self.rank.len() >= n
+            && self.surfaces.vertices().get(..v.len()).is_some_and(|head| {
+                head.iter()
+                    .zip(v)
+                    .all(|(a, b)| a.map(f32::to_bits) == b.map(f32::to_bits))
+            })
+            && self
+                .source
+                .iter()
+                .take(n)
+                .all(|&f| usize::from(f) < mesh.face_count())
+    }
+}
+
+/// What the fill pass scans, and how it reports it.
+#[derive(Debug, Clone, Copy)]
+struct Surfaces<'a> {
+    mesh: &'a Mesh<'a>,
+    /// Empty: surface = face.
+    source: &'a [u16],
+    /// Empty: no order (planes).
+    rank: &'a [u32],
+}
+
+impl Surfaces<'_> {
+    fn source(&self, s: usize) -> usize {
+        self.source.get(s).map_or(s, |&f| usize::from(f))
+    }
+
+    fn rank(&self, s: usize) -> u32 {
+        self.rank.get(s).copied().unwrap_or(0)
+    }
+}
+
 /// A face on the rows it covers.
 #[derive(Debug, Clone, Copy, Default)]
 struct ActiveFace {
@@ -89,6 +160,10 @@ struct ActiveFace {
     /// Its bit in the current row's code while inside the face: [`NO_BIT`] when
     /// outside, [`OVER`] when inside without a bit (the code is full).
     bit: u16,
+    /// Depth order: its place among the row's faces (its weight-1 code), and its
+    /// rank in the frame's front-to-back order.
+    pos: u16,
+    rank: u32,
     /// The row after its last.
     end: i32,
     plane: RowPlane,
@@ -119,6 +194,8 @@ pub struct CodeFillRenderer<
     owner: [[u16; 32]; WORDS],
     /// Faces inside at the current crossing (bits set, plus any beyond the code).
     inside: usize,
+    /// This frame has a depth order: codes are weight-1 in that order.
+    priority: bool,
     /// Next entry of the face order to activate, and the next row to scan.
     next_face: usize,
     row: u16,
@@ -145,6 +222,8 @@ impl<
 const NO_FACE: ActiveFace = ActiveFace {
     id: 0,
     bit: NO_BIT,
+    pos: NO_BIT,
+    rank: 0,
     end: 0,
     plane: RowPlane::ZERO,
 };
@@ -181,6 +260,7 @@ impl<
             code: [0; WORDS],
             owner: [[0; 32]; WORDS],
             inside: 0,
+            priority: false,
             next_face: 0,
             row: 0,
             widest: 0,
@@ -225,7 +305,7 @@ impl<
         camera: &Camera,
         settings: &Settings,
         ws: &mut CodeWorkspace<'_>,
-        mut codes: RowCodes<'_>,
+        codes: RowCodes<'_>,
         palette: &P,
         sink: &mut K,
         probe: &mut R,
@@ -233,6 +313,55 @@ impl<
     where
         K::Color: PixelColor,
     {
+        let visibility = Visibility::Planes;
+        self.render_with(
+            mesh, edges, camera, settings, ws, codes, visibility, palette, sink, probe,
+        )
+    }
+
+    /// [`render`](Self::render) with the row representation `codes` and the way
+    /// `visibility` finds the nearest face. With [`Visibility::Order`] the frame is
+    /// the order's picture: the nearest face in that order at each pixel centre
+    /// (for a BSP tree's order, the nearest face; ties between coplanar faces go to
+    /// the lower face index). `ws.vertices` then holds one entry per vertex of the
+    /// order's surfaces and `ws.order` one per surface drawn. An order made for
+    /// another mesh is [`Error::DepthOrderMismatch`]; a row with more faces than
+    /// [`Self::CODE_BITS`] is [`Error::CodeTooWide`].
+    #[allow(clippy::too_many_arguments)]
+    pub fn render_with<K: SpanSink, P: Palette<Color = K::Color>, R: FrameProbe>(
+        &mut self,
+        mesh: &Mesh<'_>,
+        edges: &EdgeAdjacency<'_>,
+        camera: &Camera,
+        settings: &Settings,
+        ws: &mut CodeWorkspace<'_>,
+        mut codes: RowCodes<'_>,
+        visibility: Visibility<'_>,
+        palette: &P,
+        sink: &mut K,
+        probe: &mut R,
+    ) -> Result<Stats, Error<K::Error>>
+    where
+        K::Color: PixelColor,
+    {
+        let fill = match &visibility {
+            Visibility::Planes => Surfaces {
+                mesh,
+                source: &[],
+                rank: &[],
+            },
+            Visibility::Order(order) => {
+                if !order.fits(mesh) {
+                    return Err(Error::DepthOrderMismatch);
+                }
+                Surfaces {
+                    mesh: &order.surfaces,
+                    source: order.source,
+                    rank: order.rank,
+                }
+            }
+        };
+        self.priority = matches!(visibility, Visibility::Order(_));
         let viewport = sink.viewport();
         let (width, height) = (viewport.width, viewport.height);
         let s = Subpixel::<Frac>::BITS;
@@ -244,6 +373,7 @@ impl<
         };
         let ctx = begin_frame(
             mesh,
+            fill.mesh.vertices(),
             edges,
             camera,
             settings,
@@ -264,7 +394,7 @@ impl<
             lines,
         } = ws;
         let faces = if settings.mode.needs_depth() {
-            self.order_faces(&ctx, vertices, drawn, order)
+            self.order_faces(&ctx, &fill, vertices, drawn, order)
                 .map_err(Error::widen)?
         } else {
             0
@@ -290,9 +420,9 @@ impl<
                     continue;
                 }
                 stats.spans += match &mut codes {
-                    RowCodes::Crossings => self.scan_row(&ctx, vertices, order, y, out),
+                    RowCodes::Crossings => self.scan_row(&ctx, &fill, vertices, order, y, out),
                     RowCodes::BitSliced(words) => {
-                        self.scan_row_sliced(&ctx, vertices, order, y, out, words)
+                        self.scan_row_sliced(&ctx, &fill, vertices, order, y, out, words)
                     }
                 }
                 .map_err(Error::widen)?;
@@ -325,17 +455,18 @@ impl<
     fn order_faces(
         &mut self,
         ctx: &FrameCtx<'_, '_>,
+        fill: &Surfaces<'_>,
         vertices: &[ProjectedVertex],
         drawn: &[u32],
         order: &mut [u32],
     ) -> Result<usize, Error> {
         let mut poly: Vec<ScreenVertex, POLY> = Vec::new();
         let mut count = 0;
-        for f in 0..ctx.mesh.face_count() {
-            if !bit(drawn, f) {
+        for f in 0..fill.mesh.face_count() {
+            if !bit(drawn, fill.source(f)) {
                 continue;
             }
-            let idx = ctx.mesh.face(f);
+            let idx = fill.mesh.face(f);
             let outside = idx.iter().fold(0, |acc, &v| {
                 acc | vertices.get(v as usize).map_or(0xFF, |p| p.outside)
             });
@@ -344,7 +475,7 @@ impl<
                     .iter()
                     .filter_map(|&v| vertices.get(v as usize).map(|p| p.screen.y));
                 row_span(ctx.s, ys)
-            } else if face_polygon(ctx, vertices, f, &mut poly)? {
+            } else if index_polygon(ctx, vertices, idx, &mut poly)? {
                 row_span(ctx.s, poly.iter().map(|v| v.y))
             } else {
                 None

@@ -47,6 +47,17 @@ impl<
             }
             // Faces beyond the code: the frame fails with the width it needs.
             n if n > Self::CODE_BITS => 0,
+            // Depth order: the priority encoder.
+            _ if self.priority => {
+                let bit = self
+                    .code
+                    .iter()
+                    .enumerate()
+                    .find(|(_, w)| **w != 0)
+                    .map_or(0, |(k, w)| 32 * k + w.trailing_zeros() as usize);
+                run.fill(self.owner(bit).id);
+                1
+            }
             _ => self.resolve_overlap(xa, xb, out),
         }
     }

@@ -5,11 +5,11 @@ use heapless::Vec;
 
 use fixed::types::extra::LeEqU32;
 
-use super::{ActiveFace, CodeFillRenderer, NO_BIT, OVER};
+use super::{ActiveFace, CodeFillRenderer, Surfaces, NO_BIT, OVER};
 use crate::render::active::ActiveEdge;
 use crate::render::transform::{ProjectedVertex, ScreenVertex};
 use crate::render::zband::DepthPlane;
-use crate::render::{face_polygon, FrameCtx};
+use crate::render::{index_polygon, FrameCtx};
 use crate::scan::edge::{Edge, EdgeLine};
 use crate::scan::RowRange;
 use crate::Error;
@@ -27,12 +27,13 @@ impl<
     pub(super) fn scan_row(
         &mut self,
         ctx: &FrameCtx<'_, '_>,
+        fill: &Surfaces<'_>,
         vertices: &[ProjectedVertex],
         order: &[u32],
         y: u16,
         out: &mut [u16],
     ) -> Result<u32, Error> {
-        self.enter_row(ctx, vertices, order, y)?;
+        self.enter_row(ctx, fill, vertices, order, y)?;
         let width = out.len() as u16;
         let row = i32::from(y);
         self.edges.move_to_row(row, ctx.s, width);
@@ -106,18 +107,45 @@ impl<
     pub(super) fn enter_row(
         &mut self,
         ctx: &FrameCtx<'_, '_>,
+        fill: &Surfaces<'_>,
         vertices: &[ProjectedVertex],
         order: &[u32],
         y: u16,
     ) -> Result<(), Error> {
         while self.row < y {
-            self.activate(ctx, vertices, order, self.row)?;
+            self.activate(ctx, fill, vertices, order, self.row)?;
             self.step_row();
         }
-        self.activate(ctx, vertices, order, y)?;
+        self.activate(ctx, fill, vertices, order, y)?;
         self.peak_faces = self.peak_faces.max(self.live.len());
         self.peak_edges = self.peak_edges.max(self.edges.len());
+        if self.priority {
+            self.assign_priority_bits();
+        }
         Ok(())
+    }
+
+    /// Depth order: the faces active on the row take weight-1 codes in their order
+    /// (the live list is kept sorted by rank), so the lowest bit set in a pixel's
+    /// code names its nearest face. The code is as wide as the faces on the row.
+    fn assign_priority_bits(&mut self) {
+        self.widest = self.widest.max(self.live.len());
+        for (bit, &slot) in self.live.iter().enumerate() {
+            if let Some(face) = self.faces.get_mut(usize::from(slot)) {
+                face.pos = if bit < Self::CODE_BITS {
+                    bit as u16
+                } else {
+                    OVER
+                };
+            }
+            if let Some(owner) = self
+                .owner
+                .get_mut(bit / 32)
+                .and_then(|o| o.get_mut(bit % 32))
+            {
+                *owner = slot;
+            }
+        }
     }
 
     /// Face `f` enters or leaves at the current crossing.
@@ -125,7 +153,13 @@ impl<
         let Some(face) = self.faces.get_mut(f) else {
             return;
         };
-        if face.bit == NO_BIT {
+        if face.bit == NO_BIT && self.priority {
+            face.bit = face.pos;
+            if let Some(word) = self.code.get_mut(usize::from(face.pos / 32)) {
+                *word |= 1 << (face.pos % 32);
+            }
+            self.inside += 1;
+        } else if face.bit == NO_BIT {
             let free = self
                 .code
                 .iter()
@@ -164,7 +198,12 @@ impl<
             // A face cut by the frame's right side can end a row inside.
             face.bit = NO_BIT;
             if face.end <= next {
-                self.live.swap_remove(k);
+                if self.priority {
+                    // Keeps the rank order.
+                    self.live.remove(k);
+                } else {
+                    self.live.swap_remove(k);
+                }
                 let _ = self.free.push(f);
             } else {
                 face.plane.step();
@@ -179,6 +218,7 @@ impl<
     pub(super) fn activate(
         &mut self,
         ctx: &FrameCtx<'_, '_>,
+        fill: &Surfaces<'_>,
         vertices: &[ProjectedVertex],
         order: &[u32],
         y: u16,
@@ -190,7 +230,7 @@ impl<
             }
             self.next_face += 1;
             let f = (key & 0xFFFF) as usize;
-            if !face_polygon(ctx, vertices, f, &mut poly)? {
+            if !index_polygon(ctx, vertices, fill.mesh.face(f), &mut poly)? {
                 continue;
             }
             let Some(plane) = DepthPlane::new(&poly, ctx.s) else {
@@ -230,16 +270,27 @@ impl<
             if added == 0 {
                 continue;
             }
+            let rank = fill.rank(f);
             if let Some(face) = self.faces.get_mut(usize::from(slot)) {
                 *face = ActiveFace {
-                    id: (f + 1) as u16,
+                    id: (fill.source(f) + 1) as u16,
                     bit: NO_BIT,
+                    pos: NO_BIT,
+                    rank,
                     end,
                     plane: plane.row_plane(y),
                 };
             }
             self.free.pop();
-            let _ = self.live.push(slot);
+            if self.priority {
+                let faces = &self.faces;
+                let at = self
+                    .live
+                    .partition_point(|&s| faces.get(usize::from(s)).map_or(0, |f| f.rank) < rank);
+                let _ = self.live.insert(at, slot);
+            } else {
+                let _ = self.live.push(slot);
+            }
         }
         Ok(())
     }

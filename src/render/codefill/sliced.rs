@@ -7,7 +7,7 @@
 
 use fixed::types::extra::LeEqU32;
 
-use super::CodeFillRenderer;
+use super::{CodeFillRenderer, Surfaces};
 use crate::render::transform::ProjectedVertex;
 use crate::render::FrameCtx;
 use crate::Error;
@@ -22,16 +22,18 @@ impl<
 {
     /// As [`scan_row`](Self::scan_row), with the row's codes in `codes` (width x
     /// words per pixel).
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn scan_row_sliced(
         &mut self,
         ctx: &FrameCtx<'_, '_>,
+        fill: &Surfaces<'_>,
         vertices: &[ProjectedVertex],
         order: &[u32],
         y: u16,
         out: &mut [u16],
         codes: &mut [u32],
     ) -> Result<u32, Error> {
-        self.enter_row(ctx, vertices, order, y)?;
+        self.enter_row(ctx, fill, vertices, order, y)?;
         // The code is as wide as the faces active on the row.
         self.widest = self.widest.max(self.live.len());
         let width = out.len();
