@@ -1,7 +1,7 @@
 //! The iterative build of the BSP tree: the work stack of fragment sets, splitting.
 
 use super::bsp::{BspNode, BspOptions, BspStorage, BspTree, NO_NODE, PLANE_TOLERANCE};
-use super::plane::{split_point, vertex, Fate, Plane, Record, Records, Side, Tally};
+use super::plane::{exact_side, split_point, vertex, Fate, Plane, Record, Records, Side, Tally};
 use crate::mesh::{Mesh, MAX_FACES};
 use crate::Error;
 
@@ -430,8 +430,9 @@ impl<'a> Writer<'a> {
     }
 }
 
-/// Cuts polygon `idx` in two (Sutherland-Hodgman on both sides at once): vertices on
-/// the plane go to both halves, and each edge crossing the plane makes one split
+/// Cuts polygon `idx` in two (Sutherland-Hodgman on both sides at once, by the exact
+/// signs of the distances, see [`Tally`]): vertices exactly on the plane go to both
+/// halves, and each edge crossing the plane makes one split
 /// point, shared by both halves. Both halves keep the polygon's winding.
 fn split(
     out: &mut Output<'_>,
@@ -450,7 +451,7 @@ fn split(
         let b = idx.get(k + 1).or(idx.first()).copied().unwrap_or(a);
         let sa = distance(out, a);
         let sb = distance(out, b);
-        let (ca, cb) = (plane.side_of(sa), plane.side_of(sb));
+        let (ca, cb) = (exact_side(sa), exact_side(sb));
         match ca {
             Side::Front => front.put(a),
             Side::Back => back.put(a),
