@@ -11,7 +11,9 @@ use std::time::Instant;
 use host_tests::frame::MeshData;
 use host_tests::obj::load_obj;
 use host_tests::random::Rng;
-use pbuffer::order::{work_bound, BspNode, BspSizes, BspStorage, BspTree, PLANE_TOLERANCE};
+use pbuffer::order::{
+    work_bound, BspNode, BspOptions, BspSizes, BspStorage, BspTree, PLANE_TOLERANCE,
+};
 use pbuffer::{Error, Mesh, Viewpoint};
 
 /// Owned storage for a build.
@@ -195,7 +197,7 @@ fn check_ray(
     t.rays += 1;
     let mut nearest: Option<(f64, usize)> = None;
     let mut first: Option<(u32, f64, usize)> = None;
-    for f in 0..tree.fragment_count() {
+    for (f, &r) in rank.iter().enumerate().take(tree.fragment_count()) {
         match hit(&mesh, f, origin, dir) {
             Hit::Miss => {}
             Hit::Edge => {
@@ -206,8 +208,8 @@ fn check_ray(
                 if nearest.is_none_or(|(n, _)| d < n) {
                     nearest = Some((d, f));
                 }
-                if first.is_none_or(|(r, _, _)| rank[f] < r) {
-                    first = Some((rank[f], d, f));
+                if first.is_none_or(|(best, _, _)| r < best) {
+                    first = Some((r, d, f));
                 }
             }
         }
@@ -549,14 +551,12 @@ fn splitter_options_sweep() {
         };
         let csr = Csr::from_data(&data);
         let mesh = csr.mesh();
-        let (mut owned, _) = csr.storage_that_fits();
         let sizes = BspSizes::for_mesh(
             mesh.vertices().len(),
             mesh.face_count(),
             mesh.indices().len(),
             8 * mesh.face_count(),
         );
-        let _ = &mut owned;
         let mut owned = Owned::new(sizes);
         for candidates in [1u16, 4, 8, 16, 32] {
             for split_weight in [1u32, 4, 8, 32] {

@@ -245,8 +245,8 @@ impl Build<'_, '_, '_> {
                 words = words.saturating_add(k + Record::HEAD);
                 count += 1;
             } else {
-                words = words.saturating_add((k - 2).saturating_mul(3 + Record::HEAD));
-                count += k - 2;
+                words = words.saturating_add(k.saturating_sub(2).saturating_mul(3 + Record::HEAD));
+                count += k.saturating_sub(2);
             }
         }
         let needed = words.saturating_add(HEADER);
@@ -384,7 +384,15 @@ impl Build<'_, '_, '_> {
         }
         // Move the children down over the set just split.
         let moved = front_len + back_len;
-        self.work.copy_within(self.top..self.top + moved, base);
+        let end = self.top.saturating_add(moved);
+        if end > self.work.len() || base > self.top {
+            // Unreachable: the children's area was taken from `work` above.
+            return Err(Error::CapacityExceeded {
+                needed: end,
+                capacity: self.work.len(),
+            });
+        }
+        self.work.copy_within(self.top..end, base);
         self.top = base + moved;
         Ok(())
     }

@@ -74,7 +74,7 @@ impl Plane {
 
     /// Is the normal zero (a face of no area, which cannot split space)?
     pub fn is_degenerate(&self) -> bool {
-        !(dot(self.n, self.n) > 0.0)
+        dot(self.n, self.n).partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater)
     }
 
     /// Signed distance times `|n|`.
