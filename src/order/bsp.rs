@@ -218,7 +218,7 @@ impl<'s> BspTree<'s> {
     /// with a zero normal never splits space; it goes to a side like any fragment.
     ///
     /// Errors: [`Error::CapacityExceeded`] as described at [`BspStorage`];
-    /// [`Error::TooManyFaces`] when there are more than [`MAX_FACES`] fragments.
+    /// [`Error::TooManyFaces`] when there are more than [`MAX_FACES`](crate::MAX_FACES) fragments.
     pub fn build_with(
         mesh: &Mesh<'_>,
         storage: BspStorage<'s>,

@@ -1,7 +1,7 @@
 //! The iterative build of the BSP tree: the work stack of fragment sets, splitting.
 
 use super::bsp::{BspNode, BspOptions, BspStorage, BspTree, NO_NODE, PLANE_TOLERANCE};
-use super::plane::{split_point, vertex, Fate, Plane, Record, Records, Side, Tally};
+use super::plane::{exact_side, split_point, vertex, Fate, Plane, Record, Records, Side, Tally};
 use crate::mesh::{Mesh, MAX_FACES};
 use crate::Error;
 
@@ -245,8 +245,8 @@ impl Build<'_, '_, '_> {
                 words = words.saturating_add(k + Record::HEAD);
                 count += 1;
             } else {
-                words = words.saturating_add((k - 2).saturating_mul(3 + Record::HEAD));
-                count += k - 2;
+                words = words.saturating_add(k.saturating_sub(2).saturating_mul(3 + Record::HEAD));
+                count += k.saturating_sub(2);
             }
         }
         let needed = words.saturating_add(HEADER);
@@ -384,7 +384,15 @@ impl Build<'_, '_, '_> {
         }
         // Move the children down over the set just split.
         let moved = front_len + back_len;
-        self.work.copy_within(self.top..self.top + moved, base);
+        let end = self.top.saturating_add(moved);
+        if end > self.work.len() || base > self.top {
+            // Unreachable: the children's area was taken from `work` above.
+            return Err(Error::CapacityExceeded {
+                needed: end,
+                capacity: self.work.len(),
+            });
+        }
+        self.work.copy_within(self.top..end, base);
         self.top = base + moved;
         Ok(())
     }
@@ -430,8 +438,9 @@ impl<'a> Writer<'a> {
     }
 }
 
-/// Cuts polygon `idx` in two (Sutherland-Hodgman on both sides at once): vertices on
-/// the plane go to both halves, and each edge crossing the plane makes one split
+/// Cuts polygon `idx` in two (Sutherland-Hodgman on both sides at once, by the exact
+/// signs of the distances, see [`Tally`]): vertices exactly on the plane go to both
+/// halves, and each edge crossing the plane makes one split
 /// point, shared by both halves. Both halves keep the polygon's winding.
 fn split(
     out: &mut Output<'_>,
@@ -450,7 +459,7 @@ fn split(
         let b = idx.get(k + 1).or(idx.first()).copied().unwrap_or(a);
         let sa = distance(out, a);
         let sb = distance(out, b);
-        let (ca, cb) = (plane.side_of(sa), plane.side_of(sb));
+        let (ca, cb) = (exact_side(sa), exact_side(sb));
         match ca {
             Side::Front => front.put(a),
             Side::Back => back.put(a),

@@ -74,7 +74,7 @@ impl Plane {
 
     /// Is the normal zero (a face of no area, which cannot split space)?
     pub fn is_degenerate(&self) -> bool {
-        !(dot(self.n, self.n) > 0.0)
+        dot(self.n, self.n).partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater)
     }
 
     /// Signed distance times `|n|`.
@@ -100,12 +100,24 @@ impl Plane {
 }
 
 /// How the vertices of one polygon fall around a plane.
+///
+/// The tolerant counts (`front`, `back`, `on`) decide the polygon's [`Fate`]; a
+/// polygon that must be cut is cut by the exact signs of the distances
+/// (`positive`, `negative`, `zero`, `crossings`), so that its two halves tile it: a
+/// vertex within tolerance but off the plane goes to its own side, and a vertex
+/// exactly on the plane to both. (Cutting by tolerant sides would put every vertex
+/// of a band to both halves; when the plane is nearly parallel to the polygon, the
+/// band holds vertices off the cut line and the halves overlap.)
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub(super) struct Tally {
     pub front: usize,
     pub back: usize,
     pub on: usize,
-    /// Edges going straight from front to back or back to front (each makes a split point).
+    pub positive: usize,
+    pub negative: usize,
+    pub zero: usize,
+    /// Edges going from a positive to a negative distance or back (each makes a
+    /// split point).
     pub crossings: usize,
 }
 
@@ -124,26 +136,43 @@ pub(super) enum Fate {
     },
 }
 
+/// The exact side of a distance, for cutting: `On` only when exactly zero.
+pub(super) fn exact_side(s: f64) -> Side {
+    if s > 0.0 {
+        Side::Front
+    } else if s < 0.0 {
+        Side::Back
+    } else {
+        Side::On
+    }
+}
+
 impl Tally {
     /// Classifies the polygon `idx` (indices into `vertices`) against `plane`.
     pub fn of(plane: &Plane, idx: &[u32], vertices: &[[f32; 3]]) -> Self {
-        let side = |i: u32| plane.side_of(plane.distance(vertex(vertices, i)));
+        let distance = |i: u32| plane.distance(vertex(vertices, i));
         let mut tally = Self::default();
-        let mut previous = idx.last().map(|&i| side(i));
+        let mut previous = idx.last().map(|&i| exact_side(distance(i)));
         for &i in idx {
-            let s = side(i);
-            match s {
+            let s = distance(i);
+            match plane.side_of(s) {
                 Side::Front => tally.front += 1,
                 Side::Back => tally.back += 1,
                 Side::On => tally.on += 1,
             }
+            let exact = exact_side(s);
+            match exact {
+                Side::Front => tally.positive += 1,
+                Side::Back => tally.negative += 1,
+                Side::On => tally.zero += 1,
+            }
             if matches!(
-                (previous, s),
+                (previous, exact),
                 (Some(Side::Front), Side::Back) | (Some(Side::Back), Side::Front)
             ) {
                 tally.crossings += 1;
             }
-            previous = Some(s);
+            previous = Some(exact);
         }
         tally
     }
@@ -158,8 +187,8 @@ impl Tally {
             Fate::Back
         } else {
             Fate::Split {
-                front: self.front + self.on + self.crossings,
-                back: self.back + self.on + self.crossings,
+                front: self.positive + self.zero + self.crossings,
+                back: self.negative + self.zero + self.crossings,
                 new: self.crossings,
             }
         }

@@ -107,16 +107,16 @@ fn ray_ok(
     let mesh = tree.fragments();
     let mut nearest: Option<(f64, usize)> = None;
     let mut first: Option<(u32, f64, usize)> = None;
-    for f in 0..tree.fragment_count() {
+    for (f, &r) in rank.iter().enumerate().take(tree.fragment_count()) {
         match hit(&mesh, f, origin, dir) {
             Hit::Miss => {}
             Hit::Edge => return Ok(false),
             Hit::At(t) => {
-                if nearest.map_or(true, |(tn, _)| t < tn) {
+                if nearest.is_none_or(|(tn, _)| t < tn) {
                     nearest = Some((t, f));
                 }
-                if first.map_or(true, |(r, _, _)| rank[f] < r) {
-                    first = Some((rank[f], t, f));
+                if first.is_none_or(|(best, _, _)| r < best) {
+                    first = Some((r, t, f));
                 }
             }
         }
@@ -240,7 +240,7 @@ fn sin(a: f64) -> f64 {
     }
     let (mut term, mut sum) = (x, x);
     for k in 1..20 {
-        term *= -x * x / ((2 * k) as f64 * (2 * k + 1) as f64);
+        term *= -x * x / (f64::from(2 * k) * f64::from(2 * k + 1));
         sum += term;
     }
     sum
@@ -558,7 +558,7 @@ fn non_planar_and_zero_normal_faces_build_and_rank() {
     let mut store = Store::new();
     let tree = BspTree::build(&mesh, store.storage()).unwrap();
     // The twisted quad became its two fan triangles.
-    assert_eq!(tree.source().iter().filter(|&&s| s == 0).count() >= 2, true);
+    assert!(tree.source().iter().filter(|&&s| s == 0).count() >= 2);
     assert!(tree.fragments().face(0).len() >= 3);
     let mut rank = [0u32; 512];
     for eye in [[0.5f32, 0.3, 3.0], [0.5, 0.5, -3.0], [3.0, 0.1, 0.25]] {
