@@ -47,7 +47,7 @@ pub use geometry::{ScreenPoint, Viewport, GUARD_BAND_PX, MAX_SUBPIXEL_BITS, MAX_
 pub use mesh::{
     face_owns_edge, EdgeAdjacency, EdgeKind, HalfEdgeRecord, Mesh, MeshEdge, Viewpoint, MAX_FACES,
 };
-pub use order::{BspNode, BspStorage, BspTree};
+pub use order::{BspNode, BspSizes, BspStorage, BspTree};
 pub use pattern::Pattern;
 pub use render::{
     CodeFillRenderer, CodeWorkspace, Cull, DepthOrder, DrawMode, MonoPalette, Palette, Settings,

@@ -103,6 +103,31 @@ pub struct BspStorage<'s> {
     pub work: &'s mut [u32],
 }
 
+impl BspStorage<'_> {
+    /// Slice lengths that suffice for a mesh of `vertices` vertices, `faces` faces
+    /// and `indices` face indices with at most `splits` splits: [`BspSizes::for_mesh`].
+    pub const fn sizes_for_mesh(
+        vertices: usize,
+        faces: usize,
+        indices: usize,
+        splits: usize,
+    ) -> BspSizes {
+        BspSizes::for_mesh(vertices, faces, indices, splits)
+    }
+
+    /// The lengths of these slices.
+    pub fn sizes(&self) -> BspSizes {
+        BspSizes {
+            vertices: self.vertices.len(),
+            indices: self.indices.len(),
+            offsets: self.offsets.len(),
+            source: self.source.len(),
+            nodes: self.nodes.len(),
+            work: self.work.len(),
+        }
+    }
+}
+
 /// Slice lengths for a [`BspStorage`]; see [`BspSizes::for_mesh`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]

@@ -516,7 +516,7 @@ fn sizes_for_mesh_suffice_for_the_splits_made() {
     let mesh = Mesh::new(&vertices, &indices, &offsets).unwrap();
     let mut store = Store::new();
     let tree = BspTree::build(&mesh, store.storage()).unwrap();
-    let sizes = BspSizes::for_mesh(12, 3, 12, tree.splits());
+    let sizes = BspStorage::sizes_for_mesh(12, 3, 12, tree.splits());
     assert!(tree.fragments().vertices().len() <= sizes.vertices);
     assert!(tree.fragments().indices().len() <= sizes.indices);
     assert!(tree.fragment_count() < sizes.offsets);
@@ -533,6 +533,7 @@ fn sizes_for_mesh_suffice_for_the_splits_made() {
         nodes: &mut s.nodes[..sizes.nodes],
         work: &mut s.work[..sizes.work],
     };
+    assert_eq!(storage.sizes(), sizes);
     assert!(BspTree::build(&mesh, storage).is_ok());
 }
 
