@@ -32,6 +32,7 @@ mod framebuffer;
 mod geometry;
 pub mod mesh;
 mod pattern;
+pub mod recommend;
 pub mod render;
 pub mod scan;
 mod sort;

@@ -13,5 +13,6 @@ pub mod pipeline;
 pub mod random;
 pub mod reference;
 pub mod reference3d;
+pub mod report;
 pub mod scenes;
 pub mod shapes;

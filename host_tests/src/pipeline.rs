@@ -11,6 +11,7 @@ use pbuffer::{
     Settings, Span, SpanSink, Stats, Viewport, Workspace, ZBufferRenderer,
 };
 
+use crate::callgrind::measured_region;
 use crate::frame::{
     CameraSpec, CullSpec, EngineSpec, Frame, MeshData, ModeSpec, ProjectionSpec, RenderSpec,
 };
@@ -22,6 +23,15 @@ const POLY: usize = 512;
 /// words), as on firmware; a frame that needs more is rendered again with 1024.
 pub const ACTIVE_FACES: usize = 2048;
 pub const ACTIVE_EDGES: usize = 8192;
+
+/// The host-only work inside the measured region of [`render_frame`] (the probe that
+/// collects the `--ids`/`--lines` images and the per-pixel host span sink): callgrind
+/// patterns that `report` passes as extra `--toggle-collect` options, so that
+/// collection is off while they run and the count is the library's own work.
+pub const EXCLUDED: [&str; 2] = [
+    "*pipeline::Collect as*FrameProbe*row*",
+    "*pipeline::PackedFrame as*SpanSink*fill_span*",
+];
 
 /// A packed 1-bpp frame of any size (the `PackedFramebuffer` layout), as a span sink.
 #[derive(Debug)]
@@ -89,6 +99,9 @@ impl Collect {
 }
 
 impl FrameProbe for Collect {
+    /// Never inlined: `report` leaves it out of the instruction count
+    /// (`--toggle-collect` on its symbol, see [`EXCLUDED`]).
+    #[inline(never)]
     fn row(&mut self, y: u16, ids: &[u16], visible: &[u32], hidden: &[u32]) {
         let base = usize::from(y) * self.width;
         for (x, &id) in ids.iter().enumerate().take(self.width) {
@@ -292,8 +305,9 @@ fn render_sd<Frac: LeEqU32, D: Depth>(
     let mut target = PackedFrame::new(w, h);
     let mut probe = Collect::new(w, h);
     let start = Instant::now();
-    let stats = renderer
-        .render(
+    let mut result = None;
+    measured_region(&mut || {
+        result = Some(renderer.render(
             &mesh,
             &adjacency,
             &camera,
@@ -302,7 +316,10 @@ fn render_sd<Frac: LeEqU32, D: Depth>(
             &MonoPalette::default(),
             &mut target,
             &mut probe,
-        )
+        ));
+    });
+    let stats = result
+        .expect("the measured region ran")
         .map_err(|e| format!("render: {e}"))?;
     let time_us = start.elapsed().as_micros() as u64;
     let working = lent + std::mem::size_of::<ZBufferRenderer<Frac, EDGES, POLY>>();
@@ -409,18 +426,25 @@ fn render_code<Frac: LeEqU32, const WORDS: usize>(
         RowCodes::Crossings
     };
     let start = Instant::now();
-    let stats = renderer
-        .render_rows(
-            &mesh,
-            &adjacency,
-            &camera,
-            &settings,
-            &mut ws,
-            codes,
-            &MonoPalette::default(),
-            &mut target,
-            &mut probe,
-        )
+    let mut codes = Some(codes);
+    let mut result = None;
+    measured_region(&mut || {
+        if let Some(codes) = codes.take() {
+            result = Some(renderer.render_rows(
+                &mesh,
+                &adjacency,
+                &camera,
+                &settings,
+                &mut ws,
+                codes,
+                &MonoPalette::default(),
+                &mut target,
+                &mut probe,
+            ));
+        }
+    });
+    let stats = result
+        .expect("the measured region ran")
         .map_err(|e| format!("render: {e}"))?;
     let time_us = start.elapsed().as_micros() as u64;
     let lent = lent + std::mem::size_of_val(words.as_slice());
