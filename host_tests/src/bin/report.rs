@@ -174,7 +174,10 @@ fn document(
         cpu_model()
     );
     if let Some(why) = &res.no_counts {
-        let _ = writeln!(s, "**Instruction counts: {why}.** The error columns are complete.\n");
+        let _ = writeln!(
+            s,
+            "**Instruction counts: {why}.** The error columns are complete.\n"
+        );
     }
     for k in &res.skipped {
         let _ = writeln!(s, "- skipped: {k}");
@@ -193,7 +196,10 @@ fn document(
             size.1,
             summary_table(res, size)
         );
-        if let Some(d) = summaries(res, size).iter().find(|m| m.config == Config::DEFAULT) {
+        if let Some(d) = summaries(res, size)
+            .iter()
+            .find(|m| m.config == Config::DEFAULT)
+        {
             let _ = writeln!(
                 s,
                 "Default at {}x{}: {} instructions per frame (mean), working RAM up to {} bytes.\n",
@@ -212,7 +218,7 @@ fn document(
     );
     let _ = writeln!(
         s,
-        "## Depth precision\n\nRelative error of the depth the Z-buffer stores, against depth bits and far/near (near = 1; see `host_tests/src/report/depth.rs`). The library offers 16- and 32-bit samples only (`Depth` for `u16` and `u32`); there is no 24-bit sample. The formula is the truncation to the sample width alone; the measured figures also carry the fixed-point positions (26 bits for the largest coordinate, which is the far distance here: at far/near 1e5 that alone is 2^-9 world units, a relative 2e-3 at the near plane) and the projection's rounding.\n\n{}",
+        "## Depth precision\n\nRelative error of the depth the Z-buffer stores, against depth bits and far/near (near = 1; see `host_tests/src/report/depth.rs`). The library offers 16- and 32-bit samples only (`Depth` for `u16` and `u32`); there is no 24-bit sample. Two formulas, and the measured figures carry both: the truncation to the sample width, `2^-(B-1) d / near`, largest at the far plane; and the fixed-point clip coordinates, whose unit is about `2^-23` of the largest coordinate (here the far distance), largest relative to the nearest depth. 16 bits are limited by the sample width (at far/near 1e5 depths beyond `near 2^15` read back 0: lost); 32 bits by the positions. A 24-bit sample, if it existed, would have a worst error `2^-23 far/near` at the far plane, the same as the positions' worst error at the near plane: about as precise as what it stores, at any ratio.\n\n{}",
         depth_table(depth_rows)
     );
     for &size in sizes {

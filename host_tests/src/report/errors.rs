@@ -45,7 +45,10 @@ pub struct Errors {
 impl Errors {
     /// Face-id mismatches (near and far) per 100 pixels the reference covers.
     pub fn mismatch_pct(&self) -> f64 {
-        pct((self.near_diffs + self.far_diffs) as f64, self.ref_covered as f64)
+        pct(
+            (self.near_diffs + self.far_diffs) as f64,
+            self.ref_covered as f64,
+        )
     }
     pub fn near_pct(&self) -> f64 {
         pct(self.near_diffs as f64, self.ref_covered as f64)
@@ -153,8 +156,7 @@ fn intersection_distance(rf: &RefFrame, a: u32, b: u32, p: (f64, f64)) -> f64 {
     let g = |x: f64, y: f64| -> Option<f64> {
         Some(1.0 / rf.face_depth(fa, x, y)? - 1.0 / rf.face_depth(fb, x, y)?)
     };
-    let (Some(g0), Some(gx), Some(gy)) = (g(p.0, p.1), g(p.0 + 0.5, p.1), g(p.0, p.1 + 0.5))
-    else {
+    let (Some(g0), Some(gx), Some(gy)) = (g(p.0, p.1), g(p.0 + 0.5, p.1), g(p.0, p.1 + 0.5)) else {
         return f64::INFINITY;
     };
     let grad = (2.0 * (gx - g0)).hypot(2.0 * (gy - g0));

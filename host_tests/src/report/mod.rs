@@ -249,8 +249,7 @@ pub fn job_key(scene: &str, (w, h): (usize, usize), c: &Config) -> String {
 /// set (printed as `pixels=N` for the harness).
 pub fn child(key: &str) -> Result<usize, String> {
     let mut parts = key.split('|');
-    let (Some(scene), Some(size), Some(config)) = (parts.next(), parts.next(), parts.next())
-    else {
+    let (Some(scene), Some(size), Some(config)) = (parts.next(), parts.next(), parts.next()) else {
         return Err(format!("bad job key {key:?}"));
     };
     let (w, h) = size
@@ -259,10 +258,7 @@ pub fn child(key: &str) -> Result<usize, String> {
         .ok_or_else(|| format!("bad size in {key:?}"))?;
     let config = Config::from_key(config).ok_or_else(|| format!("bad config in {key:?}"))?;
     let scene = load_scene(scene)?;
-    let frame = crate::pipeline::render_frame(
-        &scene.mesh,
-        &scene.camera((w, h)),
-        &config.spec((w, h)),
-    )?;
+    let frame =
+        crate::pipeline::render_frame(&scene.mesh, &scene.camera((w, h)), &config.spec((w, h)))?;
     Ok(crate::image::count_set(&frame.packed, w, h))
 }

@@ -47,17 +47,35 @@ pub fn draw(path: &Path, panels: &[(String, Vec<Point>)], y_desc: &str) -> Resul
     root.fill(&WHITE).map_err(err)?;
     let areas = root.split_evenly((1, panels.len().max(1)));
     for ((title, points), area) in panels.iter().zip(&areas) {
-        let xmax = points.iter().map(|p| p.ir).fold(0.0, f64::max) * 1.15 + 1e-9;
-        let ymax = points.iter().map(|p| p.error).fold(0.0, f64::max) * 1.15 + 1e-9;
+        let xmax = points.iter().map(|p| p.ir).fold(0.0, f64::max) * 1.1 + 1e-9;
+        let xmin = points.iter().map(|p| p.ir).fold(f64::INFINITY, f64::min) * 0.9;
+        let ymax = points.iter().map(|p| p.error).fold(0.0, f64::max) * 2.0 + 1e-6;
+        let ymin = points
+            .iter()
+            .map(|p| p.error)
+            .filter(|e| *e > 0.0)
+            .fold(f64::INFINITY, f64::min)
+            .min(ymax)
+            / 2.0;
+        // A log axis: an error of 0 is drawn at its bottom.
+        let points: Vec<Point> = points
+            .iter()
+            .map(|p| Point {
+                error: p.error.max(ymin),
+                ..p.clone()
+            })
+            .collect();
+        let points = &points;
         let mut chart = ChartBuilder::on(area)
             .caption(title, ("sans-serif", 18))
             .margin(12)
             .x_label_area_size(40)
             .y_label_area_size(56)
-            .build_cartesian_2d(0.0..xmax, 0.0..ymax)
+            .build_cartesian_2d(xmin.min(xmax)..xmax, (ymin..ymax).log_scale())
             .map_err(err)?;
         chart
             .configure_mesh()
+            .light_line_style(WHITE)
             .x_desc("instructions per frame (millions, callgrind)")
             .y_desc(y_desc)
             .x_label_formatter(&|v| format!("{v:.1}"))
@@ -93,12 +111,11 @@ pub fn draw(path: &Path, panels: &[(String, Vec<Point>)], y_desc: &str) -> Resul
             .label("default (codefill S4, full frame)")
             .legend(|(x, y)| Circle::new((x + 10, y), 6, RED.stroke_width(2)));
         chart
-            .draw_series(points.iter().map(|p| {
-                Text::new(
-                    p.config.label(),
-                    (p.ir, p.error),
-                    ("sans-serif", 11).into_font(),
-                )
+            .draw_series(points.iter().enumerate().map(|(i, p)| {
+                // Alternate the labels above and below their points.
+                let dy = if i % 2 == 0 { -14 } else { 4 };
+                EmptyElement::at((p.ir, p.error))
+                    + Text::new(p.config.label(), (6, dy), ("sans-serif", 11).into_font())
             }))
             .map_err(err)?;
         chart

@@ -137,14 +137,15 @@ pub fn errors_pass(quick: bool, res: &mut Results) {
             let rf = match reference_frame(&scene.mesh, &cam, &base) {
                 Ok(r) => r,
                 Err(e) => {
-                    res.skipped.push(format!("{name} {}x{}: reference: {e}", size.0, size.1));
+                    res.skipped
+                        .push(format!("{name} {}x{}: reference: {e}", size.0, size.1));
                     continue;
                 }
             };
             let layers = depth_complexity(&rf);
             // The coplanar scene is built of overlapping coplanar faces.
-            let bounds = scene_bounds(&scene.mesh, &cam, layers)
-                .with_coplanar_overlaps(name == "coplanar");
+            let bounds =
+                scene_bounds(&scene.mesh, &cam, layers).with_coplanar_overlaps(name == "coplanar");
             let viewport = Viewport {
                 width: size.0 as u16,
                 height: size.1 as u16,
@@ -206,9 +207,12 @@ pub fn errors_pass(quick: bool, res: &mut Results) {
                         ir: None,
                         recommended_only: !sweep.contains(&config),
                     }),
-                    Err(e) => res
-                        .skipped
-                        .push(format!("{name} {}x{} {}: {e}", size.0, size.1, config.label())),
+                    Err(e) => res.skipped.push(format!(
+                        "{name} {}x{} {}: {e}",
+                        size.0,
+                        size.1,
+                        config.label()
+                    )),
                 }
                 eprint!(".");
             }
@@ -253,7 +257,10 @@ pub fn counts_pass(res: &mut Results, jobs: usize) {
         }
     }
     if let Some(first) = failed.first() {
-        res.no_counts = Some(format!("{} jobs failed under callgrind; first: {first}", failed.len()));
+        res.no_counts = Some(format!(
+            "{} jobs failed under callgrind; first: {first}",
+            failed.len()
+        ));
     }
     res.seconds_counts = t.elapsed().as_secs_f64();
 }

@@ -130,9 +130,8 @@ pub fn summary_table(res: &Results, size: (usize, usize)) -> String {
 
 /// Every row of the sweep for one size.
 pub fn scene_table(res: &Results, size: (usize, usize), grid: bool) -> String {
-    let mut s = format!(
-        "| scene | settings | instructions | working RAM | code bits | {ERROR_HEADER} |\n"
-    );
+    let mut s =
+        format!("| scene | settings | instructions | working RAM | code bits | {ERROR_HEADER} |\n");
     s += &sep(14);
     for r in res.rows.iter().filter(|r| {
         r.size == size
@@ -174,7 +173,10 @@ pub fn recommendation_table(res: &Results) -> (String, usize, usize) {
         })
         .map_or(0.0, |r| r.errors.edge_max);
         let cfgs = super::run::recommended_configs(&c.rec);
-        for cfg in cfgs.iter().filter(|g| g.depth_bits != Some(32) || c.rec.depth_bits == 32) {
+        for cfg in cfgs
+            .iter()
+            .filter(|g| g.depth_bits != Some(32) || c.rec.depth_bits == 32)
+        {
             let Some(r) = find(cfg) else {
                 continue;
             };
@@ -225,7 +227,7 @@ pub fn recommendation_table(res: &Results) -> (String, usize, usize) {
 /// The depth-precision table.
 pub fn depth_table(rows: &[DepthRow]) -> String {
     let mut s = String::from(
-        "| depth bits | far/near | formula at far: 2^-(B-1) far/near | measured at far | measured max | measured mean | samples lost (read back 0) |\n",
+        "| depth bits | far/near | formula, sample width: 2^-(B-1) far/near (at far) | formula, fixed-point positions: about 2^-23 far/near (at near) | measured max | measured mean | samples lost (read back 0) |\n",
     );
     s += &sep(7);
     let f = |v: f64| {
@@ -242,7 +244,7 @@ pub fn depth_table(rows: &[DepthRow]) -> String {
             r.bits,
             r.ratio,
             f(r.formula_far),
-            f(r.measured_far),
+            f(r.ratio / 8_388_608.0),
             f(r.measured_max),
             f(r.measured_mean),
             r.lost
