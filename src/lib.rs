@@ -33,6 +33,7 @@ mod geometry;
 pub mod mesh;
 pub mod order;
 mod pattern;
+pub mod recommend;
 pub mod render;
 pub mod scan;
 mod sort;

@@ -50,12 +50,25 @@ pub struct Measured {
 
 /// Runs child job `id` of `exe` under callgrind, its output file in `dir`.
 pub fn callgrind(exe: &Path, dir: &Path, id: &str) -> Result<Measured, String> {
+    callgrind_with(exe, dir, id, &[])
+}
+
+/// [`callgrind`] with extra `--toggle-collect` patterns: functions called inside
+/// [`measured_region`] whose instructions are left out (collection toggles off on
+/// entry and back on at exit).
+pub fn callgrind_with(
+    exe: &Path,
+    dir: &Path,
+    id: &str,
+    excluded: &[&str],
+) -> Result<Measured, String> {
     let out_file = dir.join(format!("{}.callgrind", id.replace('/', "_")));
     let out = Command::new("valgrind")
         .arg("--tool=callgrind")
         .arg(format!("--callgrind-out-file={}", out_file.display()))
         .arg("--collect-atstart=no")
         .arg("--toggle-collect=*measured_region*")
+        .args(excluded.iter().map(|p| format!("--toggle-collect={p}")))
         .arg(exe)
         .arg("--child")
         .arg(id)
@@ -91,6 +104,15 @@ pub fn callgrind(exe: &Path, dir: &Path, id: &str) -> Result<Measured, String> {
 
 /// Runs the jobs under callgrind, `jobs` at a time.
 pub fn measure_all(ids: &[String], jobs: usize) -> Result<Vec<Measured>, String> {
+    measure_all_with(ids, jobs, &[])
+}
+
+/// [`measure_all`] with the extra patterns of [`callgrind_with`].
+pub fn measure_all_with(
+    ids: &[String],
+    jobs: usize,
+    excluded: &[&str],
+) -> Result<Vec<Measured>, String> {
     let exe = std::env::current_exe().map_err(|e| e.to_string())?;
     let dir = std::env::temp_dir().join(format!("pbuffer-bench-{}", std::process::id()));
     std::fs::create_dir_all(&dir).map_err(|e| e.to_string())?;
@@ -104,7 +126,7 @@ pub fn measure_all(ids: &[String], jobs: usize) -> Result<Vec<Measured>, String>
                 if i >= ids.len() {
                     break;
                 }
-                let r = callgrind(&exe, &dir, &ids[i]);
+                let r = callgrind_with(&exe, &dir, &ids[i], excluded);
                 eprint!(".");
                 results.lock().unwrap()[i] = Some(r);
             });

@@ -14,5 +14,6 @@ pub mod pipeline;
 pub mod random;
 pub mod reference;
 pub mod reference3d;
+pub mod report;
 pub mod scenes;
 pub mod shapes;

@@ -13,6 +13,7 @@ use pbuffer::{
 };
 
 use crate::bsp::{with_bsp, BspFigures};
+use crate::callgrind::measured_region;
 use crate::frame::{
     CameraSpec, CullSpec, EngineSpec, Frame, MeshData, ModeSpec, ProjectionSpec, RenderSpec,
 };
@@ -24,6 +25,15 @@ const POLY: usize = 512;
 /// words), as on firmware; a frame that needs more is rendered again with 1024.
 pub const ACTIVE_FACES: usize = 2048;
 pub const ACTIVE_EDGES: usize = 8192;
+
+/// The host-only work inside the measured region of [`render_frame`] (the probe that
+/// collects the `--ids`/`--lines` images and the per-pixel host span sink): callgrind
+/// patterns that `report` passes as extra `--toggle-collect` options, so that
+/// collection is off while they run and the count is the library's own work.
+pub const EXCLUDED: [&str; 2] = [
+    "*pipeline::Collect as*FrameProbe*row*",
+    "*pipeline::PackedFrame as*SpanSink*fill_span*",
+];
 
 /// A packed 1-bpp frame of any size (the `PackedFramebuffer` layout), as a span sink.
 #[derive(Debug)]
@@ -91,6 +101,9 @@ impl Collect {
 }
 
 impl FrameProbe for Collect {
+    /// Never inlined: `report` leaves it out of the instruction count
+    /// (`--toggle-collect` on its symbol, see [`EXCLUDED`]).
+    #[inline(never)]
     fn row(&mut self, y: u16, ids: &[u16], visible: &[u32], hidden: &[u32]) {
         let base = usize::from(y) * self.width;
         for (x, &id) in ids.iter().enumerate().take(self.width) {
@@ -294,8 +307,9 @@ fn render_sd<Frac: LeEqU32, D: Depth>(
     let mut target = PackedFrame::new(w, h);
     let mut probe = Collect::new(w, h);
     let start = Instant::now();
-    let stats = renderer
-        .render(
+    let mut result = None;
+    measured_region(&mut || {
+        result = Some(renderer.render(
             &mesh,
             &adjacency,
             &camera,
@@ -304,7 +318,10 @@ fn render_sd<Frac: LeEqU32, D: Depth>(
             &MonoPalette::default(),
             &mut target,
             &mut probe,
-        )
+        ));
+    });
+    let stats = result
+        .expect("the measured region ran")
         .map_err(|e| format!("render: {e}"))?;
     let time_us = start.elapsed().as_micros() as u64;
     let working = lent + std::mem::size_of::<ZBufferRenderer<Frac, EDGES, POLY>>();
@@ -427,20 +444,27 @@ fn render_code_with<Frac: LeEqU32, const WORDS: usize>(
     let mut rank = vec![0u32; bsp.map_or(0, |(tree, _)| tree.fragment_count())];
     let mut stack = vec![0u32; bsp.map_or(0, |(tree, _)| tree.depth())];
     let start = Instant::now();
-    let visibility = match bsp {
-        Some((tree, _)) => {
-            tree.rank_front_to_back(&camera.viewpoint(), &mut stack, &mut rank)
-                .map_err(|e| format!("depth order: {e}"))?;
-            Visibility::Order(DepthOrder {
-                surfaces: tree.fragments(),
-                source: tree.source(),
-                rank: &rank,
-            })
-        }
-        None => Visibility::Planes,
-    };
-    let stats = renderer
-        .render_with(
+    let mut codes = Some(codes);
+    let mut result = None;
+    // The per-frame walk of the tree is part of the frame.
+    measured_region(&mut || {
+        let Some(codes) = codes.take() else { return };
+        let visibility = match bsp {
+            Some((tree, _)) => {
+                let view = camera.viewpoint();
+                if let Err(e) = tree.rank_front_to_back(&view, &mut stack, &mut rank) {
+                    result = Some(Err(e.widen()));
+                    return;
+                }
+                Visibility::Order(DepthOrder {
+                    surfaces: tree.fragments(),
+                    source: tree.source(),
+                    rank: &rank,
+                })
+            }
+            None => Visibility::Planes,
+        };
+        result = Some(renderer.render_with(
             mesh,
             &adjacency,
             &camera,
@@ -451,7 +475,10 @@ fn render_code_with<Frac: LeEqU32, const WORDS: usize>(
             &MonoPalette::default(),
             &mut target,
             &mut probe,
-        )
+        ));
+    });
+    let stats = result
+        .expect("the measured region ran")
         .map_err(|e| format!("render: {e}"))?;
     let time_us = start.elapsed().as_micros() as u64;
     let order_bytes = bsp.map_or(0, |(_, f)| f.kept_bytes)
