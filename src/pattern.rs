@@ -23,6 +23,8 @@ const fn rot8(bits: u32, by: u32) -> u32 {
     ((bits << (by % 8)) | (bits >> ((8 - by % 8) % 8))) & 0xFF
 }
 
+// Indexing: y < 8 on a [u32; 32] (a const fn cannot use `get_mut`).
+#[allow(clippy::indexing_slicing)]
 const fn rotated_rows(base: u32, step: u32) -> [u32; 32] {
     let mut rows = [0u32; 32];
     let mut y = 0;

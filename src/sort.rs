@@ -35,6 +35,8 @@ const GAPS: [usize; 26] = [
 ///
 /// Short, in place, no recursion, and small in flash, unlike the library sort;
 /// with gap 1 alone it is the insertion sort that nearly sorted rows want.
+// Indexing: gap <= j < len in the loop, so j - gap and j are in bounds.
+#[allow(clippy::indexing_slicing)]
 pub(crate) fn sort_by_key<T, K: Ord>(items: &mut [T], key: impl Fn(&T) -> K) {
     let len = items.len();
     // A polygon's few edges: straight to the insertion sort, without walking the gaps.

@@ -57,6 +57,8 @@ fn slot(key: u32) -> usize {
 const MERGE: usize = 64;
 
 /// Insertion sort of keys.
+// Indexing: 1 <= k < len and 1 <= j <= k, so k, j and j - 1 are in bounds.
+#[allow(clippy::indexing_slicing)]
 fn insertion_sort(keys: &mut [u32]) {
     for k in 1..keys.len() {
         let moving = keys[k];
@@ -130,6 +132,9 @@ impl<const N: usize> ActiveEdges<N> {
 
     /// Moves the crossings to row `y` (edges that have begun) and restores the
     /// order: an insertion sort, since the order changes little between rows.
+    // Indexing: old <= len; tail.len() <= MERGE; the merge writes w < len and reads
+    // i - 1 < old and j - 1 < added.len() only when i > 0 and j > 0.
+    #[allow(clippy::indexing_slicing)]
     pub fn move_to_row(&mut self, y: i32, s: u32, width: u16) {
         self.set_row(y, s, width);
         let len = self.by_x.len();
@@ -179,6 +184,8 @@ impl<const N: usize> ActiveEdges<N> {
 
     /// Steps the edges that have begun past row `next - 1` and drops those that end
     /// there.
+    // Indexing: k < len and kept <= k.
+    #[allow(clippy::indexing_slicing)]
     pub fn step(&mut self, next: i32) {
         // Compacted in place (a library `retain` copies element by element through
         // a call on a Cortex-M4).

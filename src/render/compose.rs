@@ -37,6 +37,8 @@ impl Palette for MonoPalette {
         self.line
     }
 
+    // Indexing: y % 4 and x % 4 on a 4 x 4 matrix.
+    #[allow(clippy::indexing_slicing)]
     fn face(&self, _face: u16, shade: u8, x: u16, y: u16) -> Option<BinaryColor> {
         // Dark faces get more line-coloured dots; at most half, so lines stay readable.
         let level = (255 - u16::from(shade)) / 32;

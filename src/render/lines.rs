@@ -313,6 +313,8 @@ impl<const POLY: usize> FaceCache<POLY> {
 
     /// Slot of face `id` (1 + index), filled in place when missing: the polygon
     /// buffers are large, so they never move.
+    // Indexing: k is a found position or `next`, always < CACHED_FACES.
+    #[allow(clippy::indexing_slicing)]
     fn get(
         &mut self,
         ctx: &FrameCtx<'_, '_>,
@@ -355,8 +357,9 @@ fn hidden<const POLY: usize>(
 ) -> bool {
     let own = |id: u16| {
         let f = usize::from(id - 1);
-        edge.faces[..(edge.face_count.min(2) as usize)]
+        edge.faces
             .iter()
+            .take(edge.face_count.min(2) as usize)
             .any(|&g| g as usize == f)
             || (edge.kind == EdgeKind::NonManifold && face_owns_edge(ctx.mesh, edge, f))
     };

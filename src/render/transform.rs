@@ -153,6 +153,8 @@ impl FixedView {
     }
 
     /// Clip coordinates of a world position.
+    // Indexing: i in 0..3 on arrays of 3.
+    #[allow(clippy::indexing_slicing)]
     pub fn clip(&self, p: [f32; 3]) -> ClipVertex {
         let d = [0, 1, 2].map(|i| round_i64(p[i] * self.pos_scale) - self.eye[i]);
         let c = self

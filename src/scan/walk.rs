@@ -163,6 +163,8 @@ impl<const N: usize> PolygonWalker<N> {
         }
     }
 
+    // Indexing: 1 <= j <= i < min(len of both) in the insertion sort.
+    #[allow(clippy::indexing_slicing)]
     fn next_narrow(&mut self, sorted: bool) -> Option<(u16, &mut [Crossing])> {
         let edges = &mut self.table.edges;
         let row = self.row;

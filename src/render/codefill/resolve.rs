@@ -67,6 +67,8 @@ impl<
     /// wins when nearer by more than a tie. The winner at the run's start holds
     /// until the winner changes, found by bisection (two planes along a row cross
     /// at most once).
+    // Indexing: n < 8 = by_id.len() before an insertion (checked), and i <= n.
+    #[allow(clippy::indexing_slicing)]
     pub(super) fn resolve_overlap(&self, xa: u16, xb: u16, out: &mut [u16]) -> u32 {
         // The covering faces in index order (insertion: a few faces), as slots of
         // the face table.
@@ -145,6 +147,8 @@ impl<
 
     /// Calls `f` on each face whose bit is set in the code, with its slot in the
     /// face table.
+    // Indexing: trailing_zeros of a non-zero u32 is < 32 on [u16; 32].
+    #[allow(clippy::indexing_slicing)]
     pub(super) fn each_covering<'a>(&'a self, mut f: impl FnMut(u16, &'a ActiveFace)) {
         for (owners, &word) in self.owner.iter().zip(self.code.iter()) {
             let mut bits = word;

@@ -149,6 +149,9 @@ impl<
     }
 
     /// Face `f` enters or leaves at the current crossing.
+    // Indexing: k comes from enumerating `code` (k < WORDS) and b = trailing_ones of
+    // a word that is not all ones (b < 32).
+    #[allow(clippy::indexing_slicing)]
     pub(super) fn toggle(&mut self, f: usize) {
         let Some(face) = self.faces.get_mut(f) else {
             return;
