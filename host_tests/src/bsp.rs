@@ -39,6 +39,7 @@ pub fn with_bsp<R>(
         let mut offsets = vec![0u32; sizes.offsets];
         let mut source = vec![0u16; sizes.source];
         let mut nodes = vec![BspNode::default(); sizes.nodes];
+        let mut seams = vec![[0u32; 2]; sizes.seams];
         let mut work = vec![0u32; sizes.work];
         let start = Instant::now();
         let built = BspTree::build(
@@ -49,6 +50,7 @@ pub fn with_bsp<R>(
                 offsets: &mut offsets,
                 source: &mut source,
                 nodes: &mut nodes,
+                seams: &mut seams,
                 work: &mut work,
             },
         );

@@ -23,6 +23,7 @@ struct Owned {
     offsets: Vec<u32>,
     source: Vec<u16>,
     nodes: Vec<BspNode>,
+    seams: Vec<[u32; 2]>,
     work: Vec<u32>,
 }
 
@@ -34,6 +35,7 @@ impl Owned {
             offsets: vec![0; s.offsets],
             source: vec![0; s.source],
             nodes: vec![BspNode::EMPTY; s.nodes],
+            seams: vec![[0; 2]; s.seams],
             work: vec![0; s.work],
         }
     }
@@ -45,6 +47,7 @@ impl Owned {
             offsets: &mut self.offsets,
             source: &mut self.source,
             nodes: &mut self.nodes,
+            seams: &mut self.seams,
             work: &mut self.work,
         }
     }

@@ -80,10 +80,12 @@ impl BspNode {
 /// Storage the caller lends for building a [`BspTree`]; all slices, sizes checked.
 ///
 /// A slice that is too small is [`Error::CapacityExceeded`] `{ needed, capacity }`.
-/// `vertices` and `work` are used during the build, so for them `needed` is a lower
-/// bound (what the build had reached); `nodes`, `offsets`, `source` and `indices`
-/// are only written, so the build runs to the end and reports their exact need
-/// (checked in that order). [`BspSizes::for_mesh`] gives sizes that suffice.
+/// `vertices`, `seams` and `work` are used during the build, so for them `needed` is
+/// a lower bound (what the build had reached); `nodes`, `offsets` and `source` are
+/// only written, so the build runs to the end and reports their exact need (checked
+/// in that order). `indices` is exact too, except when it cannot even hold the
+/// fragments before the seams' split points are inserted (see [`BspTree::build_with`]):
+/// then `needed` is that lower bound. [`BspSizes::for_mesh`] gives sizes that suffice.
 #[derive(Debug)]
 pub struct BspStorage<'s> {
     /// Out: the mesh's vertices (same indices), then the split points.
@@ -96,10 +98,14 @@ pub struct BspStorage<'s> {
     pub source: &'s mut [u16],
     /// Out: the nodes; node 0 is the root.
     pub nodes: &'s mut [BspNode],
-    /// Scratch for the iterative build: the stack of fragment sets still to be split.
-    /// `2 * I + 8 * F + 8` words always suffice, where `F` and `I` are the fragment
-    /// and fragment-index counts of the result ([`BspTree::work_peak`] tells the
-    /// exact need of a built tree).
+    /// Scratch: the root segment of each split point (the mesh edge or cut chord it
+    /// lies on, as two vertex indices), one per split point.
+    pub seams: &'s mut [[u32; 2]],
+    /// Scratch for the iterative build: the stack of fragment sets still to be split,
+    /// then the split points sorted along their root segments. `2 * I + 8 * F + 8`
+    /// words always suffice, where `F` and `I` are the fragment and fragment-index
+    /// counts of the result ([`BspTree::work_peak`] tells the exact need of a built
+    /// tree).
     pub work: &'s mut [u32],
 }
 
@@ -123,6 +129,7 @@ impl BspStorage<'_> {
             offsets: self.offsets.len(),
             source: self.source.len(),
             nodes: self.nodes.len(),
+            seams: self.seams.len(),
             work: self.work.len(),
         }
     }
@@ -142,6 +149,8 @@ pub struct BspSizes {
     pub source: usize,
     /// `BspStorage::nodes`.
     pub nodes: usize,
+    /// `BspStorage::seams`.
+    pub seams: usize,
     /// `BspStorage::work`.
     pub work: usize,
 }
@@ -150,30 +159,26 @@ impl BspSizes {
     /// Sizes for a mesh of `vertices` vertices, `faces` faces and `indices` face
     /// indices, allowing `splits` fragment splits (each split makes one more fragment).
     ///
-    /// A non-planar face of `k` vertices becomes its `k - 2` fan triangles (see
-    /// [`BspTree::build`]), so the sizes start from that worst case. They suffice
-    /// whenever the build makes at most `splits` splits, each adding at most 2 split
-    /// points and 4 indices: true for convex fragments (triangle meshes) unless a
-    /// cutting plane passes within tolerance of 3 or more vertices of one fragment.
-    /// The split count of a mesh is [`BspTree::splits`] of a trial build.
+    /// They suffice whenever the build makes at most `splits` splits, each adding at
+    /// most 2 split points, and the seams add at most 2 more indices per split point
+    /// (each split point lies on one root segment, shared by at most two faces'
+    /// fragments besides the two that share it already, in a manifold mesh): true for
+    /// convex fragments of a manifold mesh (triangle meshes) unless a cutting plane
+    /// passes within tolerance of 3 or more vertices of one fragment. The split count
+    /// of a mesh is [`BspTree::splits`] of a trial build.
     pub const fn for_mesh(vertices: usize, faces: usize, indices: usize, splits: usize) -> Self {
-        let pieces = indices.saturating_sub(faces.saturating_mul(2));
-        let piece_indices = {
-            let fans = pieces.saturating_mul(3);
-            if fans > indices {
-                fans
-            } else {
-                indices
-            }
-        };
-        let fragments = pieces.saturating_add(splits);
-        let fragment_indices = piece_indices.saturating_add(splits.saturating_mul(4));
+        let fragments = faces.saturating_add(splits);
+        let points = splits.saturating_mul(2);
+        let fragment_indices = indices
+            .saturating_add(splits.saturating_mul(4))
+            .saturating_add(points.saturating_mul(2));
         Self {
-            vertices: vertices.saturating_add(splits.saturating_mul(2)),
+            vertices: vertices.saturating_add(points),
             indices: fragment_indices,
             offsets: fragments.saturating_add(1),
             source: fragments,
             nodes: fragments,
+            seams: points,
             work: work_bound(fragments, fragment_indices),
         }
     }
@@ -237,10 +242,19 @@ impl<'s> BspTree<'s> {
     /// recursion), splitting fragments that straddle a node's plane.
     ///
     /// Planes and split points are computed in f64 (split points stored as f32; both
-    /// halves of a split share the split point's vertex index). A face that is not
-    /// planar within [`PLANE_TOLERANCE`] first becomes its fan triangles
-    /// `(v0, v_i, v_i+1)`, whose depth is the face's depth by CONVENTIONS.md. A face
-    /// with a zero normal never splits space; it goes to a side like any fragment.
+    /// halves of a split share the split point's vertex index). Every face, planar or
+    /// not, starts as one fragment, and its plane is its Newell plane through its
+    /// centroid: a face that is not planar within [`PLANE_TOLERANCE`] is kept whole
+    /// (its pieces, when other planes cut it, tile it in any projection), so that its
+    /// coverage stays that of its polygon (CONVENTIONS.md); the fragments of the
+    /// splitter's face all stay in its node. A face with a zero normal never splits
+    /// space; it goes to a side like any fragment.
+    ///
+    /// The fragments are watertight: a split point is also inserted into every other
+    /// fragment edge that lies on the same mesh edge (welded: ends compared by
+    /// position bits) or on the same cut chord, in order along it, so two fragments
+    /// that share an edge share its whole vertex sequence and no pixel centre falls
+    /// between them.
     ///
     /// Errors: [`Error::CapacityExceeded`] as described at [`BspStorage`];
     /// [`Error::TooManyFaces`] when there are more than [`MAX_FACES`](crate::MAX_FACES) fragments.
@@ -254,8 +268,9 @@ impl<'s> BspTree<'s> {
 
     /// The fragments as a validated mesh: the original vertices (same indices), then
     /// the split points; one face per fragment, wound like its source face. Every
-    /// fragment is a (convex or concave) part of exactly one source face, or of one
-    /// fan triangle of a non-planar face.
+    /// fragment is a (convex or concave) part of exactly one source face; its edges
+    /// hold every split point that lies on them (T-vertices, so it may have
+    /// collinear corners).
     pub fn fragments(&self) -> Mesh<'s> {
         self.fragments
     }
@@ -285,8 +300,7 @@ impl<'s> BspTree<'s> {
         self.depth
     }
 
-    /// Fragment splits made: fragments minus the faces (and fan triangles) the build
-    /// started from.
+    /// Fragment splits made: fragments minus the faces the build started from.
     pub fn splits(&self) -> usize {
         self.fragment_count().saturating_sub(self.pieces)
     }

@@ -2,6 +2,7 @@
 
 use super::bsp::{BspNode, BspOptions, BspStorage, BspTree, NO_NODE, PLANE_TOLERANCE};
 use super::plane::{exact_side, split_point, vertex, Fate, Plane, Record, Records, Side, Tally};
+use super::seams::Seams;
 use crate::mesh::{Mesh, MAX_FACES};
 use crate::Error;
 
@@ -21,6 +22,7 @@ pub(super) fn run<'s>(
         offsets,
         source,
         nodes,
+        seams,
         work,
     } = storage;
     let scale = mesh
@@ -32,6 +34,8 @@ pub(super) fn run<'s>(
     let mut out = Output {
         vertices,
         vertex_count: 0,
+        base: mesh.vertices().len(),
+        seams,
         indices,
         index_count: 0,
         offsets,
@@ -55,8 +59,7 @@ pub(super) fn run<'s>(
         build.split_top(&mut out)?;
     }
     let depth = build.depth;
-    let work_peak = build.peak;
-    out.finish(depth, pieces, work_peak)
+    out.finish(depth, pieces, build.peak, build.work)
 }
 
 pub(super) fn need(needed: usize, capacity: usize) -> Result<(), Error> {
@@ -71,6 +74,10 @@ pub(super) fn need(needed: usize, capacity: usize) -> Result<(), Error> {
 struct Output<'s> {
     vertices: &'s mut [[f32; 3]],
     vertex_count: usize,
+    /// The mesh's vertex count: split points are numbered from here.
+    base: usize,
+    /// `seams[x - base]`: the root segment of split point `x` (see [`Seams`]).
+    seams: &'s mut [[u32; 2]],
     indices: &'s mut [u32],
     index_count: usize,
     offsets: &'s mut [u32],
@@ -96,8 +103,21 @@ impl<'s> Output<'s> {
         Ok(())
     }
 
-    /// Appends a split point; `more` further ones are about to follow (for the error).
-    fn push_vertex(&mut self, p: [f32; 3], more: usize) -> Result<u32, Error> {
+    /// The split points' root segments, as far as they are made.
+    fn seams(&self) -> Seams<'_> {
+        let vertices: &[[f32; 3]] = self.vertices;
+        let roots: &[[u32; 2]] = self.seams;
+        let splits = self.vertex_count.saturating_sub(self.base);
+        Seams {
+            vertices: vertices.get(..self.vertex_count).unwrap_or(vertices),
+            base: self.base,
+            roots: roots.get(..splits).unwrap_or(roots),
+        }
+    }
+
+    /// Appends a split point on root segment `root`; `more` further ones are about to
+    /// follow (for the error).
+    fn push_vertex(&mut self, p: [f32; 3], root: [u32; 2], more: usize) -> Result<u32, Error> {
         let capacity = self.vertices.len();
         let slot = self
             .vertices
@@ -107,6 +127,13 @@ impl<'s> Output<'s> {
                 capacity,
             })?;
         *slot = p;
+        let split = self.vertex_count.saturating_sub(self.base);
+        let capacity = self.seams.len();
+        let seam = self.seams.get_mut(split).ok_or(Error::CapacityExceeded {
+            needed: split.saturating_add(more).saturating_add(1),
+            capacity,
+        })?;
+        *seam = root;
         let index = u32::try_from(self.vertex_count).map_err(|_| Error::CapacityExceeded {
             needed: self.vertex_count.saturating_add(1),
             capacity: u32::MAX as usize,
@@ -183,11 +210,122 @@ impl<'s> Output<'s> {
         }
     }
 
-    fn finish(self, depth: usize, pieces: usize, work_peak: usize) -> Result<BspTree<'s>, Error> {
+    /// Makes the fragments watertight (see [`Seams`]): inserts into every fragment
+    /// edge the split points of its root segment that lie strictly between its ends,
+    /// in order. Sorts the split points in `work`; returns the words used there.
+    /// The CSR arrays are rewritten in place, back to front.
+    fn insert_seam_vertices(&mut self, work: &mut [u32]) -> Result<usize, Error> {
+        let splits = self.vertex_count.saturating_sub(self.base);
+        let capacity = work.len();
+        let sorted = work.get_mut(..splits).ok_or(Error::CapacityExceeded {
+            needed: splits,
+            capacity,
+        })?;
+        for (k, s) in sorted.iter_mut().enumerate() {
+            // Vertex indices fit u32 (push_vertex checked).
+            *s = self.base.saturating_add(k) as u32;
+        }
+        let Self {
+            vertices,
+            vertex_count,
+            base,
+            seams,
+            indices,
+            index_count,
+            offsets,
+            fragment_count,
+            ..
+        } = self;
+        let vertices: &[[f32; 3]] = vertices;
+        let roots: &[[u32; 2]] = seams;
+        let seams = Seams {
+            vertices: vertices.get(..*vertex_count).unwrap_or(vertices),
+            base: *base,
+            roots: roots.get(..splits).unwrap_or(roots),
+        };
+        seams.sort(sorted);
+        let sorted: &[u32] = sorted;
+        let broken = Error::CapacityExceeded {
+            needed: *index_count,
+            capacity: indices.len(),
+        };
+        let range = |offsets: &[u32], f: usize| -> Result<(usize, usize), Error> {
+            match (offsets.get(f), offsets.get(f.saturating_add(1))) {
+                (Some(&s), Some(&e)) if s <= e => Ok((s as usize, e as usize)),
+                _ => Err(broken),
+            }
+        };
+        let extra = |idx: &[u32]| -> usize {
+            idx.iter()
+                .enumerate()
+                .map(|(k, &a)| {
+                    let b = idx.get(k + 1).or(idx.first()).copied().unwrap_or(a);
+                    seams.between(sorted, a, b).0.len()
+                })
+                .sum()
+        };
+        let mut added = 0usize;
+        for f in 0..*fragment_count {
+            let (s, e) = range(offsets, f)?;
+            added = added.saturating_add(extra(indices.get(s..e).ok_or(broken)?));
+        }
+        let total = index_count.saturating_add(added);
+        need(total, indices.len())?;
+        u32::try_from(total).map_err(|_| Error::CapacityExceeded {
+            needed: total,
+            capacity: u32::MAX as usize,
+        })?;
+        // Back to front: a fragment's new place starts at or after its old one, and
+        // within it each vertex moves up, so nothing is overwritten before it is read.
+        let mut end = total;
+        for f in (0..*fragment_count).rev() {
+            let (s, e) = range(offsets, f)?;
+            let len = e - s;
+            let grow = extra(indices.get(s..e).ok_or(broken)?);
+            let start = end
+                .checked_sub(len.saturating_add(grow))
+                .filter(|&start| start >= s)
+                .ok_or(broken)?;
+            let mut next = indices.get(s).copied().ok_or(broken)?;
+            let mut at = end;
+            for k in (s..e).rev() {
+                let a = indices.get(k).copied().ok_or(broken)?;
+                let (between, forward) = seams.between(sorted, a, next);
+                let points = sorted.get(between).unwrap_or(&[]);
+                // Written back to front: the points nearest `next` first.
+                if forward {
+                    points.iter().rev().for_each(|&x| put(indices, &mut at, x));
+                } else {
+                    points.iter().for_each(|&x| put(indices, &mut at, x));
+                }
+                put(indices, &mut at, a);
+                next = a;
+            }
+            if at != start {
+                // Unreachable: `extra` counted these very points.
+                return Err(broken);
+            }
+            if let Some(o) = offsets.get_mut(f + 1) {
+                *o = end as u32;
+            }
+            end = at;
+        }
+        *index_count = total;
+        Ok(splits)
+    }
+
+    fn finish(
+        mut self,
+        depth: usize,
+        pieces: usize,
+        work_peak: usize,
+        work: &mut [u32],
+    ) -> Result<BspTree<'s>, Error> {
         let fragments = self.fragment_count;
         need(self.node_count, self.nodes.len())?;
         need(fragments.saturating_add(1), self.offsets.len())?;
         need(fragments, self.source.len())?;
+        // Before the seams' split points are inserted: a lower bound.
         need(self.index_count, self.indices.len())?;
         if fragments > MAX_FACES {
             return Err(Error::TooManyFaces {
@@ -195,6 +333,8 @@ impl<'s> Output<'s> {
                 max: MAX_FACES,
             });
         }
+        let sorted_words = self.insert_seam_vertices(work)?;
+        let work_peak = work_peak.max(sorted_words);
         let vertices: &'s [[f32; 3]] = self.vertices;
         let indices: &'s [u32] = self.indices;
         let offsets: &'s [u32] = self.offsets;
@@ -233,22 +373,15 @@ struct Build<'w, 'm, 'a> {
 }
 
 impl Build<'_, '_, '_> {
-    /// Pushes the root set: every face in order, or its fan triangles when it is not
-    /// planar. Returns the number of records.
+    /// Pushes the root set: every face in order, whole (a face that is not planar
+    /// too: see [`BspTree::build_with`]). Returns the number of records.
     fn push_faces(&mut self) -> Result<usize, Error> {
         let mesh = self.mesh;
-        let mut words = 0usize;
-        let mut count = 0usize;
-        for face in 0..mesh.face_count() {
-            let k = mesh.face(face).len();
-            if is_planar(mesh, face, self.tolerance_sq) {
-                words = words.saturating_add(k + Record::HEAD);
-                count += 1;
-            } else {
-                words = words.saturating_add(k.saturating_sub(2).saturating_mul(3 + Record::HEAD));
-                count += k.saturating_sub(2);
-            }
-        }
+        let count = mesh.face_count();
+        let words = mesh
+            .indices()
+            .len()
+            .saturating_add(count.saturating_mul(Record::HEAD));
         let needed = words.saturating_add(HEADER);
         let capacity = self.work.len();
         let area = self
@@ -262,23 +395,12 @@ impl Build<'_, '_, '_> {
             }
             at += 1;
         };
-        for face in 0..mesh.face_count() {
+        for face in 0..count {
             let corners = mesh.face(face);
             // Face ids are below MAX_FACES < 2^16.
-            let id = face as u32;
-            if is_planar(mesh, face, self.tolerance_sq) {
-                put(id);
-                put(corners.len() as u32);
-                corners.iter().for_each(|&i| put(i));
-            } else {
-                let v0 = corners.first().copied().unwrap_or(0);
-                for (fan, pair) in corners.windows(2).enumerate().skip(1) {
-                    put(id | ((fan as u32) << 16));
-                    put(3);
-                    put(v0);
-                    pair.iter().for_each(|&i| put(i));
-                }
-            }
+            put(face as u32);
+            put(corners.len() as u32);
+            corners.iter().for_each(|&i| put(i));
         }
         for value in [words, count, NO_NODE as usize, 1] {
             put(u32::try_from(value).unwrap_or(u32::MAX));
@@ -328,8 +450,8 @@ impl Build<'_, '_, '_> {
 
         // Pass 1: the sizes of the two child sets.
         let (mut front, mut back) = ((0usize, 0usize), (0usize, 0usize));
-        for (ordinal, (_, idx)) in Records::new(set).enumerate() {
-            match Tally::of(&plane, idx, out.vertices).fate(ordinal == splitter) {
+        for (word, idx) in Records::new(set) {
+            match Tally::of(&plane, idx, out.vertices).fate(Record::face(word) == splitter) {
                 Fate::Node => {}
                 Fate::Front => front = (front.0 + idx.len() + Record::HEAD, front.1 + 1),
                 Fate::Back => back = (back.0 + idx.len() + Record::HEAD, back.1 + 1),
@@ -355,8 +477,8 @@ impl Build<'_, '_, '_> {
         // the others into the child sets.
         let mut front_writer = Writer::new(front_area);
         let mut back_writer = Writer::new(back_area);
-        for (ordinal, (word, idx)) in Records::new(set).enumerate() {
-            match Tally::of(&plane, idx, out.vertices).fate(ordinal == splitter) {
+        for (word, idx) in Records::new(set) {
+            match Tally::of(&plane, idx, out.vertices).fate(Record::face(word) == splitter) {
                 Fate::Node => out.emit(word, idx)?,
                 Fate::Front => front_writer.record(word, idx),
                 Fate::Back => back_writer.record(word, idx),
@@ -473,7 +595,8 @@ fn split(
             (Side::Front, Side::Back) | (Side::Back, Side::Front)
         ) {
             let p = split_point(out.vertices, a, sa, b, sb);
-            let x = out.push_vertex(p, new.saturating_sub(made + 1))?;
+            let root = out.seams().root(a, b);
+            let x = out.push_vertex(p, root, new.saturating_sub(made + 1))?;
             made += 1;
             front.put(x);
             back.put(x);
@@ -488,7 +611,9 @@ fn split(
 /// evenly over the set (skipping those of zero normal), the lowest score
 /// `split_weight * splits + |front - back|`, the earliest on a tie. If no candidate
 /// has a normal, the first record that has one; if none has, record 0 (a node of
-/// zero-normal fragments, which cover no pixels). Returns `(ordinal, plane)`.
+/// zero-normal fragments, which cover no pixels). Returns the splitter's source face
+/// and plane: every fragment of that face in the set goes to the node (a face that
+/// is not planar, cut earlier, keeps its pieces together in its plane's node).
 fn choose_splitter(
     mesh: &Mesh<'_>,
     set: &[u32],
@@ -517,8 +642,9 @@ fn choose_splitter(
         }
         let bound = best.as_ref().map_or(u64::MAX, |b| b.0);
         let (mut splits, mut front, mut back) = (0u64, 0u64, 0u64);
-        for (other, (_, idx)) in Records::new(set).enumerate() {
-            match Tally::of(&plane, idx, vertices).fate(other == ordinal) {
+        let face = Record::face(word);
+        for (other, idx) in Records::new(set) {
+            match Tally::of(&plane, idx, vertices).fate(Record::face(other) == face) {
                 Fate::Node => {}
                 Fate::Front => front += 1,
                 Fate::Back => back += 1,
@@ -536,33 +662,33 @@ fn choose_splitter(
             .saturating_mul(splits)
             .saturating_add(front.abs_diff(back));
         if score < bound {
-            best = Some((score, ordinal, plane));
+            best = Some((score, face, plane));
         }
     }
-    if let Some((_, ordinal, plane)) = best {
-        return (ordinal, plane);
+    if let Some((_, face, plane)) = best {
+        return (face, plane);
     }
     let first_with_normal = Records::new(set)
-        .enumerate()
-        .map(|(ordinal, (word, _))| (ordinal, Plane::of_record(mesh, word, tolerance_sq)))
+        .map(|(word, _)| {
+            (
+                Record::face(word),
+                Plane::of_record(mesh, word, tolerance_sq),
+            )
+        })
         .find(|(_, plane)| !plane.is_degenerate());
     first_with_normal.unwrap_or_else(|| {
         let word = set.first().copied().unwrap_or(0);
-        (0, Plane::of_record(mesh, word, tolerance_sq))
+        (
+            Record::face(word),
+            Plane::of_record(mesh, word, tolerance_sq),
+        )
     })
 }
 
-/// Is the face planar within tolerance (or a triangle, or of zero normal, or too
-/// long to number its fan triangles)?
-fn is_planar(mesh: &Mesh<'_>, face: usize, tolerance_sq: f64) -> bool {
-    let corners = mesh.face(face);
-    if corners.len() <= 3 || corners.len() > 0xFFFF {
-        return true;
+/// Writes `value` just below `at` and moves `at` down.
+fn put(indices: &mut [u32], at: &mut usize, value: u32) {
+    *at = at.saturating_sub(1);
+    if let Some(w) = indices.get_mut(*at) {
+        *w = value;
     }
-    let plane = Plane::of_record(mesh, face as u32, tolerance_sq);
-    plane.is_degenerate()
-        || corners.iter().all(|&i| {
-            let p = mesh.vertices().get(i as usize).copied();
-            plane.side_of(plane.distance(p.unwrap_or([0.0; 3]))) == Side::On
-        })
 }

@@ -14,6 +14,7 @@
 mod bsp;
 mod build;
 mod plane;
+mod seams;
 #[cfg(test)]
 mod tests;
 

@@ -54,22 +54,13 @@ impl Plane {
         }
     }
 
-    /// The plane of a work record: its whole source face, or the fan triangle
-    /// `(v0, v_fan, v_fan+1)` of a non-planar face (see [`Record`]).
+    /// The plane of a work record: that of its whole source face (Newell normal,
+    /// through the centroid), planar or not.
     pub fn of_record(mesh: &Mesh<'_>, word: u32, tolerance_sq: f64) -> Self {
         let corners = mesh.face(Record::face(word));
-        let fan = Record::fan(word);
         let vertices = mesh.vertices();
         let position = move |i: &u32| vertices.get(*i as usize).map(|p| p.map(f64::from));
-        if fan == 0 {
-            Self::through(corners.iter().filter_map(position), tolerance_sq)
-        } else {
-            let triangle = [corners.first(), corners.get(fan), corners.get(fan + 1)];
-            Self::through(
-                triangle.into_iter().flatten().filter_map(position),
-                tolerance_sq,
-            )
-        }
+        Self::through(corners.iter().filter_map(position), tolerance_sq)
     }
 
     /// Is the normal zero (a face of no area, which cannot split space)?
@@ -177,9 +168,9 @@ impl Tally {
         tally
     }
 
-    /// The polygon's fate; the splitter always stays in its node.
-    pub fn fate(&self, is_splitter: bool) -> Fate {
-        if is_splitter || (self.front == 0 && self.back == 0) {
+    /// The polygon's fate; a fragment of the splitter's face always stays in its node.
+    pub fn fate(&self, of_splitter: bool) -> Fate {
+        if of_splitter || (self.front == 0 && self.back == 0) {
             Fate::Node
         } else if self.back == 0 {
             Fate::Front
@@ -223,8 +214,7 @@ pub(super) fn split_point(vertices: &[[f32; 3]], a: u32, sa: f64, b: u32, sb: f6
 }
 
 /// Work-stack records: `[word, len, idx_0 .. idx_len-1]`, where `word` holds the
-/// source face in its low 16 bits and, for a fan triangle of a non-planar face, the
-/// fan index `i >= 1` (triangle `v0, v_i, v_i+1`) in its high 16 bits.
+/// source face in its low 16 bits.
 pub(super) struct Record;
 
 impl Record {
@@ -233,10 +223,6 @@ impl Record {
 
     pub fn face(word: u32) -> usize {
         (word & 0xFFFF) as usize
-    }
-
-    pub fn fan(word: u32) -> usize {
-        (word >> 16) as usize
     }
 }
 

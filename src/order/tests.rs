@@ -11,6 +11,7 @@ struct Store {
     offsets: [u32; 512],
     source: [u16; 512],
     nodes: [BspNode; 512],
+    seams: [[u32; 2]; 256],
     work: [u32; 8192],
 }
 
@@ -22,6 +23,7 @@ impl Store {
             offsets: [0; 512],
             source: [0; 512],
             nodes: [BspNode::EMPTY; 512],
+            seams: [[0; 2]; 256],
             work: [0; 8192],
         }
     }
@@ -33,6 +35,7 @@ impl Store {
             offsets: &mut self.offsets,
             source: &mut self.source,
             nodes: &mut self.nodes,
+            seams: &mut self.seams,
             work: &mut self.work,
         }
     }
@@ -531,6 +534,7 @@ fn sizes_for_mesh_suffice_for_the_splits_made() {
         offsets: &mut s.offsets[..sizes.offsets],
         source: &mut s.source[..sizes.source],
         nodes: &mut s.nodes[..sizes.nodes],
+        seams: &mut s.seams[..sizes.seams],
         work: &mut s.work[..sizes.work],
     };
     assert_eq!(storage.sizes(), sizes);
@@ -558,8 +562,8 @@ fn non_planar_and_zero_normal_faces_build_and_rank() {
     let mesh = Mesh::new(&vertices, &indices, &offsets).unwrap();
     let mut store = Store::new();
     let tree = BspTree::build(&mesh, store.storage()).unwrap();
-    // The twisted quad became its two fan triangles.
-    assert!(tree.source().iter().filter(|&&s| s == 0).count() >= 2);
+    // The twisted quad is kept whole (its Newell plane), cut only by other planes.
+    assert!(tree.source().iter().any(|&s| s == 0));
     assert!(tree.fragments().face(0).len() >= 3);
     let mut rank = [0u32; 512];
     for eye in [[0.5f32, 0.3, 3.0], [0.5, 0.5, -3.0], [3.0, 0.1, 0.25]] {
@@ -567,4 +571,75 @@ fn non_planar_and_zero_normal_faces_build_and_rank() {
     }
     let checked = check_grid(&tree, [0.4, 0.3, 3.0], -1.0, 2.0, 0.0, 30);
     assert!(checked > 500);
+}
+
+#[test]
+fn a_split_edge_gives_its_point_to_the_neighbour_across_it() {
+    // A folded quad: triangle T0 (face 1) in z = 0 and T1 (face 2) tilted up, sharing
+    // the diagonal (0,0,0)-(2,2,0); and a small panel C (face 0) in the plane x = 1.5,
+    // in front of T1's plane. The root is T1 (no split); then C cuts T0, and its
+    // plane crosses the diagonal at (1.5, 1.5, 0). T1 is in another node: only the
+    // seam insertion can give it that point.
+    let vertices = [
+        [0.0, 0.0, 0.0],
+        [2.0, 0.0, 0.0],
+        [2.0, 2.0, 0.0],
+        [0.0, 2.0, 1.0],
+        [1.5, 0.2, -0.2],
+        [1.5, 1.0, -0.2],
+        [1.5, 1.0, 0.3],
+        [1.5, 0.2, 0.3],
+    ];
+    let indices = [4, 5, 6, 7, 0, 1, 2, 0, 2, 3];
+    let offsets = [0, 4, 7, 10];
+    let mesh = Mesh::new(&vertices, &indices, &offsets).unwrap();
+    let mut store = Store::new();
+    let tree = BspTree::build(&mesh, store.storage()).unwrap();
+    let fragments = tree.fragments();
+    let p = [1.5f32, 1.5, 0.0];
+    let has_p = |f: usize| {
+        fragments
+            .face(f)
+            .iter()
+            .any(|&i| fragments.vertices()[i as usize] == p)
+    };
+    let of = |s: u16| (0..tree.fragment_count()).filter(move |&f| tree.source()[f] == s);
+    assert_eq!(of(2).count(), 1, "T1 is not cut");
+    assert_eq!(of(1).count(), 2, "T0 is cut in two");
+    assert!(of(1).all(has_p), "both halves of T0 hold the split point");
+    let t1 = of(2).next().unwrap();
+    assert!(
+        has_p(t1),
+        "T1 holds the split point: {:?}",
+        fragments.face(t1)
+    );
+    // In order along the shared edge: T1 = (0, 0, 0), P, (2, 2, 0), (0, 2, 1).
+    let corners: [[f32; 3]; 4] =
+        core::array::from_fn(|k| fragments.vertices()[fragments.face(t1)[k] as usize]);
+    assert_eq!(corners, [vertices[0], p, vertices[2], vertices[3]]);
+}
+
+#[test]
+fn non_planar_faces_stay_whole() {
+    // A twisted quad over a flat square: one fragment, its own four corners (not its
+    // fan triangles, whose union can cover more than the polygon does).
+    let vertices = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.5],
+        [0.0, 1.0, 0.0],
+        [-1.0, -1.0, -0.2],
+        [2.0, -1.0, -0.2],
+        [2.0, 2.0, -0.2],
+        [-1.0, 2.0, -0.2],
+    ];
+    let indices = [0, 1, 2, 3, 4, 5, 6, 7];
+    let offsets = [0, 4, 8];
+    let mesh = Mesh::new(&vertices, &indices, &offsets).unwrap();
+    let mut store = Store::new();
+    let tree = BspTree::build(&mesh, store.storage()).unwrap();
+    assert_eq!(tree.fragment_count(), 2);
+    assert_eq!(tree.splits(), 0);
+    let f = (0..2).find(|&f| tree.source()[f] == 0).unwrap();
+    assert_eq!(tree.fragments().face(f), &[0, 1, 2, 3]);
 }
