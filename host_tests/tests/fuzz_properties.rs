@@ -2,7 +2,8 @@
 //! values): seeded generators feed NaN, infinities, 1e35, i32 extremes, subnormals,
 //! repeated and out-of-range indices, degenerate faces and degenerate cameras into
 //! mesh + camera -> frame (code fill with both row representations, the Z-buffer with
-//! 16- and 32-bit depth). Properties:
+//! 16- and 32-bit depth, and code fill in the depth order of a BSP tree built for the
+//! case). Properties:
 //! - invalid input gives exactly the documented error (`NonFiniteVertex`,
 //!   `IndexOutOfRange`, `DegenerateFace`, `BadFaceOffsets`, `EmptyMesh`,
 //!   `BadCamera(problem)`), computed by an independent oracle (`fuzzgen`);
@@ -26,10 +27,11 @@ use fixed::types::extra::{LeEqU32, U0, U12, U4};
 use fuzzgen::{finite, panic_message, raw_camera, raw_mesh, wild, RawCamera, RawMesh, Recorder};
 use host_tests::random::Rng;
 use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
+use pbuffer::order::{BspNode, BspSizes, BspStorage, BspTree};
 use pbuffer::render::{storage_rows, Depth, ProjectedVertex, RowCodes};
 use pbuffer::{
-    Camera, CodeFillRenderer, CodeWorkspace, Cull, DrawMode, Error, MonoPalette, Pattern, Settings,
-    Stats, Workspace, ZBufferRenderer,
+    Camera, CodeFillRenderer, CodeWorkspace, Cull, DepthOrder, DrawMode, Error, MonoPalette,
+    Pattern, Settings, Stats, Visibility, Workspace, ZBufferRenderer,
 };
 
 /// Mesh + camera cases of the render property.
@@ -37,11 +39,13 @@ const RENDER_CASES: usize = 30_000;
 /// Mesh + camera cases of the error property.
 const ERROR_CASES: usize = 200_000;
 
-/// The four engines.
+/// The five engines.
 #[derive(Clone, Copy, Debug)]
 enum Engine {
     Crossings,
     BitSliced,
+    /// Crossings in a BSP tree's depth order (the tree built for the case).
+    Ordered,
     Z16,
     Z32,
 }
@@ -64,13 +68,63 @@ struct Job<'a> {
 type Code<F> = CodeFillRenderer<F, 1, 64, 256, 64>;
 
 fn render_code<F: LeEqU32>(job: &Job, sliced: bool, sink: &mut Recorder) -> Result<Stats, Error> {
+    render_code_in::<F>(job, sliced, None, sink)
+}
+
+/// Code fill in the depth order of a BSP tree built into storage for up to two
+/// splits per face (more is `CapacityExceeded`, an allowed outcome).
+fn render_ordered<F: LeEqU32>(job: &Job, sink: &mut Recorder) -> Result<Stats, Error> {
+    let mesh = job.mesh;
+    let sizes = BspSizes::for_mesh(
+        mesh.vertices().len(),
+        mesh.face_count(),
+        mesh.indices().len(),
+        2 * mesh.face_count() + 8,
+    );
+    let mut vertices = vec![[0f32; 3]; sizes.vertices];
+    let mut indices = vec![0u32; sizes.indices];
+    let mut offsets = vec![0u32; sizes.offsets];
+    let mut source = vec![0u16; sizes.source];
+    let mut nodes = vec![BspNode::default(); sizes.nodes];
+    let mut seams = vec![[0u32; 2]; sizes.seams];
+    let mut work = vec![0u32; sizes.work];
+    let tree = BspTree::build(
+        mesh,
+        BspStorage {
+            vertices: &mut vertices,
+            indices: &mut indices,
+            offsets: &mut offsets,
+            source: &mut source,
+            nodes: &mut nodes,
+            seams: &mut seams,
+            work: &mut work,
+        },
+    )?;
+    let mut rank = vec![0u32; tree.fragment_count()];
+    let mut stack = vec![0u32; tree.depth()];
+    tree.rank_front_to_back(&job.camera.viewpoint(), &mut stack, &mut rank)?;
+    let order = DepthOrder {
+        surfaces: tree.fragments(),
+        source: tree.source(),
+        rank: &rank,
+    };
+    render_code_in::<F>(job, false, Some(order), sink)
+}
+
+fn render_code_in<F: LeEqU32>(
+    job: &Job,
+    sliced: bool,
+    depth_order: Option<DepthOrder<'_>>,
+    sink: &mut Recorder,
+) -> Result<Stats, Error> {
     let (w, band) = (usize::from(job.w), usize::from(job.band));
     let stored = usize::from(storage_rows(job.band, job.h));
-    let n = job.mesh.vertices().len() - usize::from(job.short);
+    let surfaces = depth_order.map_or(*job.mesh, |o| o.surfaces);
+    let n = surfaces.vertices().len() - usize::from(job.short);
     let mut vertices = vec![ProjectedVertex::default(); n];
     let mut drawn = vec![0u32; job.mesh.face_count().div_ceil(32)];
     let mut features = vec![0u32; job.edges.edges().len().div_ceil(32)];
-    let mut order = vec![0u32; job.mesh.face_count()];
+    let mut order = vec![0u32; surfaces.face_count()];
     let mut ids = vec![0u16; w * stored];
     let mut lines = vec![0u32; 2 * w.div_ceil(32) * band];
     let mut ws = CodeWorkspace {
@@ -89,13 +143,15 @@ fn render_code<F: LeEqU32>(job: &Job, sliced: bool, sink: &mut Recorder) -> Resu
     };
     // Boxed: the engine's tables are too large for a test thread's stack.
     let mut engine = Box::new(Code::<F>::new());
-    engine.render_rows(
+    let visibility = depth_order.map_or(Visibility::Planes, Visibility::Order);
+    engine.render_with(
         job.mesh,
         job.edges,
         job.camera,
         &job.settings,
         &mut ws,
         codes,
+        visibility,
         &MonoPalette::default(),
         sink,
         &mut (),
@@ -137,6 +193,7 @@ fn render_s<F: LeEqU32>(job: &Job, engine: Engine, sink: &mut Recorder) -> Resul
     match engine {
         Engine::Crossings => render_code::<F>(job, false, sink),
         Engine::BitSliced => render_code::<F>(job, true, sink),
+        Engine::Ordered => render_ordered::<F>(job, sink),
         Engine::Z16 => render_z::<F, u16>(job, sink),
         Engine::Z32 => render_z::<F, u32>(job, sink),
     }
@@ -292,6 +349,7 @@ fn valid_scenes_never_panic_or_write_outside_the_target() {
         for engine in [
             Engine::Crossings,
             Engine::BitSliced,
+            Engine::Ordered,
             Engine::Z16,
             Engine::Z32,
         ] {
@@ -326,6 +384,10 @@ fn valid_scenes_never_panic_or_write_outside_the_target() {
                 Err(Error::CapacityExceeded { needed, capacity }) => needed > capacity,
                 Err(Error::CodeTooWide { needed, capacity }) => needed > capacity && capacity == 32,
                 Err(Error::OutOfRange) => true,
+                // More fragments than face ids can name.
+                Err(Error::TooManyFaces { faces, max }) => {
+                    matches!(engine, Engine::Ordered) && faces > max
+                }
                 Err(_) => false,
             };
             if job.short
@@ -365,7 +427,13 @@ fn valid_scenes_never_panic_or_write_outside_the_target() {
         failures.len(),
         &failures[..failures.len().min(5)]
     );
-    for k in ["Z32 Ok", "Crossings CodeTooWide", "Z16 CapacityExceeded"] {
+    for k in [
+        "Z32 Ok",
+        "Crossings CodeTooWide",
+        "Z16 CapacityExceeded",
+        "Ordered Ok",
+        "Ordered CodeTooWide",
+    ] {
         assert!(
             outcomes.get(k).copied().unwrap_or(0) > 0,
             "{k} never happened: {outcomes:?}"
