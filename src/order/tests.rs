@@ -563,7 +563,7 @@ fn non_planar_and_zero_normal_faces_build_and_rank() {
     let mut store = Store::new();
     let tree = BspTree::build(&mesh, store.storage()).unwrap();
     // The twisted quad is kept whole (its Newell plane), cut only by other planes.
-    assert!(tree.source().iter().any(|&s| s == 0));
+    assert!(tree.source().contains(&0));
     assert!(tree.fragments().face(0).len() >= 3);
     let mut rank = [0u32; 512];
     for eye in [[0.5f32, 0.3, 3.0], [0.5, 0.5, -3.0], [3.0, 0.1, 0.25]] {
