@@ -5,6 +5,7 @@
 //! Plus the test models: fragment counts, depth and build time, printed
 //! (`cargo test --release -p host_tests --test bsp_order -- --nocapture`).
 
+use std::collections::HashMap;
 use std::path::Path;
 use std::time::Instant;
 
@@ -286,9 +287,9 @@ fn plane_of(points: &[[f64; 3]]) -> Option<([f64; 3], [f64; 3])> {
 
 /// Fragments tile their source faces: their area vectors sum to the face's, within
 /// `1e-6` relative or the rounding of split points to f32 (`f32::EPSILON * scale *
-/// perimeter`, for slivers); and each lies in its face's plane, or in the plane of
-/// one of its fan triangles when the face is not planar (within twice the build's
-/// tolerance). Returns the largest area error relative to the face's area.
+/// perimeter`, for slivers); and each lies in its face's plane (within twice the
+/// build's tolerance), or between its corners' offsets from that plane when the
+/// face is not planar. Returns the largest area error relative to the face's area.
 fn check_tiling(source_mesh: &Mesh<'_>, tree: &BspTree<'_>, scale: f64) -> f64 {
     let fragments = tree.fragments();
     let mut sums = vec![[0.0f64; 3]; source_mesh.face_count()];
@@ -300,21 +301,21 @@ fn check_tiling(source_mesh: &Mesh<'_>, tree: &BspTree<'_>, scale: f64) -> f64 {
             .iter()
             .map(|&i| pos(source_mesh, i))
             .collect();
-        let mut planes = vec![plane_of(&corners)];
-        planes.extend(
-            (1..corners.len() - 1).map(|i| plane_of(&[corners[0], corners[i], corners[i + 1]])),
-        );
-        let in_plane = |plane: &Option<([f64; 3], [f64; 3])>| {
-            plane.is_some_and(|(n, p0)| {
+        // Within the slab of the face's corners about its plane (a face that is not
+        // planar is kept whole, so its fragments lie between its corners' offsets).
+        if let Some((n, p0)) = plane_of(&corners) {
+            let offset = |p: [f64; 3]| dot(n, sub(p, p0));
+            let lo = corners.iter().map(|&p| offset(p)).fold(f64::MAX, f64::min);
+            let hi = corners.iter().map(|&p| offset(p)).fold(f64::MIN, f64::max);
+            let slack = 2.0 * PLANE_TOLERANCE * scale;
+            assert!(
                 fragments.face(f).iter().all(|&i| {
-                    dot(n, sub(pos(&fragments, i), p0)).abs() <= 2.0 * PLANE_TOLERANCE * scale
-                })
-            })
-        };
-        assert!(
-            planes.iter().all(Option::is_none) || planes.iter().any(in_plane),
-            "fragment {f} does not lie in face {s}'s plane nor in one of its fan triangles'"
-        );
+                    let o = offset(pos(&fragments, i));
+                    o >= lo - slack && o <= hi + slack
+                }),
+                "fragment {f} does not lie in face {s}'s slab"
+            );
+        }
     }
     let mut worst = (0.0f64, 0.0f64);
     for (s, sum) in sums.iter().enumerate() {
@@ -345,6 +346,80 @@ fn check_tiling(source_mesh: &Mesh<'_>, tree: &BspTree<'_>, scale: f64) -> f64 {
     worst.0
 }
 
+/// Position bits of a vertex (welding: bit-identical positions are one vertex).
+fn bits(mesh: &Mesh<'_>, i: u32) -> [u32; 3] {
+    mesh.vertices()[i as usize].map(f32::to_bits)
+}
+
+/// Directed edges of a mesh's faces, by position bits, with their multiplicity.
+fn half_edges(mesh: &Mesh<'_>) -> HashMap<([u32; 3], [u32; 3]), usize> {
+    let mut map = HashMap::new();
+    for f in 0..mesh.face_count() {
+        let c = mesh.face(f);
+        for k in 0..c.len() {
+            let (a, b) = (bits(mesh, c[k]), bits(mesh, c[(k + 1) % c.len()]));
+            if a != b {
+                *map.entry((a, b)).or_insert(0) += 1;
+            }
+        }
+    }
+    map
+}
+
+/// Is `p` on segment `u`-`v` (within `eps`, as a distance)?
+fn on_segment(p: [f64; 3], u: [f64; 3], v: [f64; 3], eps: f64) -> bool {
+    let d = sub(v, u);
+    let len2 = dot(d, d);
+    if len2 == 0.0 {
+        return norm(sub(p, u)) <= eps;
+    }
+    let t = (dot(sub(p, u), d) / len2).clamp(0.0, 1.0);
+    norm(sub(p, add(u, d.map(|c| c * t)))) <= eps
+}
+
+/// The fragments are watertight: every fragment edge has an opposite half-edge among
+/// the fragments (same welded ends, other direction), except where it lies on an
+/// edge of its source face that has no opposite half-edge among the mesh's faces (a
+/// boundary, or a seam with the faces wound alike). Returns (edges, exempt).
+fn check_watertight(source_mesh: &Mesh<'_>, tree: &BspTree<'_>, scale: f64) -> (usize, usize) {
+    let fragments = tree.fragments();
+    let mesh_halves = half_edges(source_mesh);
+    let halves = half_edges(&fragments);
+    let eps = 1e-5 * scale;
+    let (mut edges, mut exempt) = (0, 0);
+    for f in 0..tree.fragment_count() {
+        let c = fragments.face(f);
+        for k in 0..c.len() {
+            let (a, b) = (c[k], c[(k + 1) % c.len()]);
+            let (ba, bb) = (bits(&fragments, a), bits(&fragments, b));
+            if ba == bb {
+                continue;
+            }
+            edges += 1;
+            if halves.contains_key(&(bb, ba)) {
+                continue;
+            }
+            let s = tree.source()[f] as usize;
+            let sc = source_mesh.face(s);
+            let (pa, pb) = (pos(&fragments, a), pos(&fragments, b));
+            let on_open_edge = (0..sc.len()).any(|j| {
+                let (u, v) = (sc[j], sc[(j + 1) % sc.len()]);
+                let (bu, bv) = (bits(source_mesh, u), bits(source_mesh, v));
+                let (pu, pv) = (pos(source_mesh, u), pos(source_mesh, v));
+                !mesh_halves.contains_key(&(bv, bu))
+                    && on_segment(pa, pu, pv, eps)
+                    && on_segment(pb, pu, pv, eps)
+            });
+            assert!(
+                on_open_edge,
+                "fragment {f} (face {s}): edge {a}-{b} {pa:?} -> {pb:?} has no opposite half"
+            );
+            exempt += 1;
+        }
+    }
+    (edges, exempt)
+}
+
 /// A target for a ray: a random point of a random face (three times in four, so
 /// most rays meet something), else a random point of the box `lo..hi`.
 fn target(rng: &mut Rng, mesh: &Mesh<'_>, lo: [f64; 3], hi: [f64; 3]) -> [f64; 3] {
@@ -370,6 +445,7 @@ fn random_soups_rank_the_nearest_fragment_first() {
     let mut rng = Rng::new(0xB5B5_0001);
     let mut total = Tally::default();
     let (mut faces, mut fragments, mut worst_area) = (0usize, 0usize, 0.0f64);
+    let (mut seam_edges, mut open_edges) = (0usize, 0usize);
     for scene in 0..200 {
         let n = 10 + rng.below(21) as usize;
         let csr = Csr::from_data(&soup(&mut rng, n));
@@ -382,6 +458,9 @@ fn random_soups_rank_the_nearest_fragment_first() {
             tree.work_peak() <= work_bound(tree.fragment_count(), tree.fragments().indices().len())
         );
         worst_area = worst_area.max(check_tiling(&mesh, &tree, 1.0));
+        let (edges, exempt) = check_watertight(&mesh, &tree, 1.0);
+        seam_edges += edges;
+        open_edges += exempt;
         let mut stack = vec![0u32; tree.depth()];
         let mut rank = vec![u32::MAX; tree.fragment_count()];
         for e in 0..4 {
@@ -448,6 +527,10 @@ fn random_soups_rank_the_nearest_fragment_first() {
         total.missed,
         total.edge,
         total.ties
+    );
+    println!(
+        "soups: {seam_edges} fragment edges, {} with an opposite half, {open_edges} on open mesh edges",
+        seam_edges - open_edges
     );
     assert!(
         fragments > faces + faces / 2,
@@ -518,6 +601,16 @@ fn models_build_with_reasonable_sizes() {
             .flatten()
             .fold(0.0f64, |m, c| m.max(c.abs()));
         let area_error = check_tiling(&mesh, &tree, scale);
+        let (edges, exempt) = check_watertight(&mesh, &tree, scale);
+        println!(
+            "          watertight: {edges} fragment edges, {exempt} on open mesh edges; \
+             kept {} bytes",
+            std::mem::size_of_val(tree.fragments().vertices())
+                + std::mem::size_of_val(tree.fragments().indices())
+                + std::mem::size_of_val(tree.fragments().face_offsets())
+                + std::mem::size_of_val(tree.source())
+                + std::mem::size_of_val(tree.nodes())
+        );
         let mut stack = vec![0u32; tree.depth()];
         let mut rank = vec![0u32; fragments];
         for _ in 0..3 {

@@ -456,10 +456,13 @@ impl Build<'_, '_, '_> {
                 Fate::Front => front = (front.0 + idx.len() + Record::HEAD, front.1 + 1),
                 Fate::Back => back = (back.0 + idx.len() + Record::HEAD, back.1 + 1),
                 Fate::Split {
-                    front: f, back: b, ..
+                    front: f,
+                    back: b,
+                    pieces,
+                    ..
                 } => {
                     front = (front.0 + f + Record::HEAD, front.1 + 1);
-                    back = (back.0 + b + Record::HEAD, back.1 + 1);
+                    back = (back.0 + b + Record::HEAD * pieces, back.1 + pieces);
                 }
             }
         }
@@ -560,10 +563,16 @@ impl<'a> Writer<'a> {
     }
 }
 
-/// Cuts polygon `idx` in two (Sutherland-Hodgman on both sides at once, by the exact
-/// signs of the distances, see [`Tally`]): vertices exactly on the plane go to both
-/// halves, and each edge crossing the plane makes one split
-/// point, shared by both halves. Both halves keep the polygon's winding.
+/// Cuts polygon `idx` by the exact signs of the distances (see [`Tally`]): each edge
+/// crossing the plane makes one split point. The front is one polygon
+/// (Sutherland-Hodgman: the vertices in front or exactly on the plane and the split
+/// points, in order); the back is one piece per stretch of vertices behind the plane,
+/// from the point where the boundary enters the back (a split point, or a vertex
+/// exactly on the plane) to where it leaves, closed by the chord that the front
+/// polygon bridges the other way. So the pieces' boundaries add up to the polygon's
+/// (the chords cancel) even when it crosses the plane more than twice and is not
+/// planar, where Sutherland-Hodgman's two sets of bridges would not be the same
+/// segments. All pieces keep the polygon's winding; `new` split points are made.
 fn split(
     out: &mut Output<'_>,
     plane: &Plane,
@@ -573,37 +582,76 @@ fn split(
     front: &mut Writer<'_>,
     back: &mut Writer<'_>,
 ) -> Result<(), Error> {
-    let f_len = front.begin(word);
-    let b_len = back.begin(word);
-    let mut made = 0usize;
-    let distance = |out: &Output<'_>, i: u32| plane.distance(vertex(out.vertices, i));
-    for (k, &a) in idx.iter().enumerate() {
-        let b = idx.get(k + 1).or(idx.first()).copied().unwrap_or(a);
-        let sa = distance(out, a);
-        let sb = distance(out, b);
-        let (ca, cb) = (exact_side(sa), exact_side(sb));
-        match ca {
-            Side::Front => front.put(a),
-            Side::Back => back.put(a),
-            Side::On => {
-                front.put(a);
-                back.put(a);
-            }
-        }
-        if matches!(
-            (ca, cb),
+    let len = idx.len();
+    let at = |k: usize| idx.get(k % len.max(1)).copied().unwrap_or(0);
+    let side = |out: &Output<'_>, k: usize| exact_side(plane.distance(vertex(out.vertices, at(k))));
+    let crosses = |out: &Output<'_>, k: usize| {
+        matches!(
+            (side(out, k), side(out, k + 1)),
             (Side::Front, Side::Back) | (Side::Back, Side::Front)
-        ) {
+        )
+    };
+    // The front, making the split points: the j-th crossing edge (from edge 0) makes
+    // vertex `first + j`.
+    let first = out.vertex_count;
+    let f_len = front.begin(word);
+    let mut made = 0usize;
+    for k in 0..len {
+        let (a, b) = (at(k), at(k + 1));
+        if side(out, k) != Side::Back {
+            front.put(a);
+        }
+        if crosses(out, k) {
+            let (sa, sb) = (
+                plane.distance(vertex(out.vertices, a)),
+                plane.distance(vertex(out.vertices, b)),
+            );
             let p = split_point(out.vertices, a, sa, b, sb);
             let root = out.seams().root(a, b);
             let x = out.push_vertex(p, root, new.saturating_sub(made + 1))?;
             made += 1;
             front.put(x);
-            back.put(x);
         }
     }
     front.end(f_len);
-    back.end(b_len);
+    // The back pieces, walking from the start of a back stretch.
+    let made = made.max(1);
+    let split_vertex = |ordinal: usize| {
+        // Vertex indices fit u32 (push_vertex checked).
+        first.saturating_add(ordinal % made) as u32
+    };
+    let start = (0..len)
+        .find(|&k| side(out, k) == Side::Back && side(out, k + len - 1) != Side::Back)
+        .unwrap_or(0);
+    let mut ordinal = (0..start).filter(|&k| crosses(out, k)).count();
+    let mut piece = None;
+    for k in start..start + len {
+        if side(out, k) == Side::Back {
+            let before = k + len - 1;
+            if side(out, before) != Side::Back {
+                piece = Some(back.begin(word));
+                if side(out, before) == Side::On {
+                    back.put(at(before));
+                } else {
+                    back.put(split_vertex(ordinal + made - 1));
+                }
+            }
+            back.put(at(k));
+            if side(out, k + 1) != Side::Back {
+                if side(out, k + 1) == Side::On {
+                    back.put(at(k + 1));
+                } else {
+                    back.put(split_vertex(ordinal));
+                }
+                if let Some(len_at) = piece.take() {
+                    back.end(len_at);
+                }
+            }
+        }
+        if crosses(out, k) {
+            ordinal += 1;
+        }
+    }
     Ok(())
 }
 

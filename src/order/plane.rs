@@ -110,6 +110,9 @@ pub(super) struct Tally {
     /// Edges going from a positive to a negative distance or back (each makes a
     /// split point).
     pub crossings: usize,
+    /// Stretches of consecutive vertices at negative distances (each becomes one
+    /// back piece of a cut).
+    pub runs: usize,
 }
 
 /// What happens to a polygon at a node.
@@ -119,10 +122,12 @@ pub(super) enum Fate {
     Node,
     Front,
     Back,
-    /// It is cut in two: the vertex counts of the halves and the new split points.
+    /// It is cut: the vertex counts of the front piece and of the back pieces (all
+    /// together), the number of back pieces and the new split points.
     Split {
         front: usize,
         back: usize,
+        pieces: usize,
         new: usize,
     },
 }
@@ -163,6 +168,9 @@ impl Tally {
             ) {
                 tally.crossings += 1;
             }
+            if exact == Side::Back && previous != Some(Side::Back) {
+                tally.runs += 1;
+            }
             previous = Some(exact);
         }
         tally
@@ -179,7 +187,8 @@ impl Tally {
         } else {
             Fate::Split {
                 front: self.positive + self.zero + self.crossings,
-                back: self.negative + self.zero + self.crossings,
+                back: self.negative + 2 * self.runs,
+                pieces: self.runs,
                 new: self.crossings,
             }
         }

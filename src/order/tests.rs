@@ -563,7 +563,7 @@ fn non_planar_and_zero_normal_faces_build_and_rank() {
     let mut store = Store::new();
     let tree = BspTree::build(&mesh, store.storage()).unwrap();
     // The twisted quad is kept whole (its Newell plane), cut only by other planes.
-    assert!(tree.source().iter().any(|&s| s == 0));
+    assert!(tree.source().contains(&0));
     assert!(tree.fragments().face(0).len() >= 3);
     let mut rank = [0u32; 512];
     for eye in [[0.5f32, 0.3, 3.0], [0.5, 0.5, -3.0], [3.0, 0.1, 0.25]] {
@@ -642,4 +642,68 @@ fn non_planar_faces_stay_whole() {
     assert_eq!(tree.splits(), 0);
     let f = (0..2).find(|&f| tree.source()[f] == 0).unwrap();
     assert_eq!(tree.fragments().face(f), &[0, 1, 2, 3]);
+}
+
+#[test]
+fn a_saddle_cut_four_times_is_tiled_by_its_pieces() {
+    // A square near z = 0.5 (face 0, tilted so that the saddle's plane z = 0.5 cuts it
+    // too and it wins the tie as the root) and a saddle quad (face 1) whose corners
+    // alternate below and above it: the cut crosses the quad four times.
+    let vertices = [
+        [-1.0, -1.0, 0.45],
+        [2.0, -1.0, 0.6],
+        [2.0, 2.0, 0.6],
+        [-1.0, 2.0, 0.45],
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 1.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 1.0],
+    ];
+    let indices = [0, 1, 2, 3, 4, 5, 6, 7];
+    let offsets = [0, 4, 8];
+    let mesh = Mesh::new(&vertices, &indices, &offsets).unwrap();
+    let mut store = Store::new();
+    let tree = BspTree::build(&mesh, store.storage()).unwrap();
+    let fragments = tree.fragments();
+    let newell = |corners: &[u32], v: &[[f32; 3]]| {
+        let mut n = [0.0f64; 3];
+        for k in 0..corners.len() {
+            let a = v[corners[k] as usize].map(f64::from);
+            let b = v[corners[(k + 1) % corners.len()] as usize].map(f64::from);
+            let c = cross(a, b);
+            n = [n[0] + c[0], n[1] + c[1], n[2] + c[2]];
+        }
+        n
+    };
+    let whole = newell(mesh.face(1), mesh.vertices());
+    let mut sum = [0.0f64; 3];
+    let mut pieces = 0;
+    for f in 0..tree.fragment_count() {
+        if tree.source()[f] == 1 {
+            pieces += 1;
+            let n = newell(fragments.face(f), fragments.vertices());
+            sum = [sum[0] + n[0], sum[1] + n[1], sum[2] + n[2]];
+        }
+    }
+    assert_eq!(pieces, 3, "one front piece, two back pieces");
+    for k in 0..3 {
+        assert!((sum[k] - whole[k]).abs() < 1e-6, "{sum:?} != {whole:?}");
+    }
+    // Every edge between two split points (here a chord: they lie on different
+    // sides of the saddle) has its opposite among the pieces.
+    let saddle = || (0..tree.fragment_count()).filter(|&f| tree.source()[f] == 1);
+    let edge = |f: usize, k: usize| {
+        let c = fragments.face(f);
+        (c[k], c[(k + 1) % c.len()])
+    };
+    for f in saddle() {
+        for k in 0..fragments.face(f).len() {
+            let (a, b) = edge(f, k);
+            if a >= 8 && b >= 8 {
+                let opposite =
+                    saddle().any(|g| (0..fragments.face(g).len()).any(|j| edge(g, j) == (b, a)));
+                assert!(opposite, "fragment {f}: chord {a}-{b} has no opposite");
+            }
+        }
+    }
 }
