@@ -94,9 +94,9 @@ impl Plane {
 ///
 /// The tolerant counts (`front`, `back`, `on`) decide the polygon's [`Fate`]; a
 /// polygon that must be cut is cut by the exact signs of the distances
-/// (`positive`, `negative`, `zero`, `crossings`), so that its two halves tile it: a
-/// vertex within tolerance but off the plane goes to its own side, and a vertex
-/// exactly on the plane to both. (Cutting by tolerant sides would put every vertex
+/// (`positive`, `negative`, `zero`, `crossings`, `runs`), so that its pieces tile
+/// it: a vertex within tolerance but off the plane goes to its own side, and a
+/// vertex exactly on the plane to the front and to the back pieces it bounds. (Cutting by tolerant sides would put every vertex
 /// of a band to both halves; when the plane is nearly parallel to the polygon, the
 /// band holds vertices off the cut line and the halves overlap.)
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
