@@ -15,6 +15,17 @@
 #![no_std]
 #![forbid(unsafe_code)]
 #![deny(missing_docs, missing_debug_implementations)]
+// Panic-freedom made visible: no unchecked index, unwrap, expect or panic outside
+// tests. Each allowed index carries its bound proof where it is allowed.
+#![cfg_attr(
+    not(test),
+    deny(
+        clippy::indexing_slicing,
+        clippy::unwrap_used,
+        clippy::expect_used,
+        clippy::panic
+    )
+)]
 #![warn(
     clippy::cast_lossless,
     clippy::semicolon_if_nothing_returned,

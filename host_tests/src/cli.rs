@@ -550,7 +550,7 @@ mod tests {
             (&["--crease", "200"], "--crease"),
             (&["--cull", "maybe"], "--cull"),
             (&["--mode", "solid"], "--mode"),
-            (&["--engine", "scanline"], "--engine"),
+            (&["--engine", "raycast"], "--engine"),
             (&["--subpixel", "13"], "--subpixel"),
             (&["--depth-bits", "24"], "--depth-bits"),
             (&["--band", "0"], "--band"),

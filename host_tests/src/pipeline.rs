@@ -391,9 +391,19 @@ fn render_code<Frac: LeEqU32, const WORDS: usize>(
     if spec.engine == EngineSpec::Scanline {
         return render_code_with::<Frac, WORDS>(&arrays, &mesh, None, cam, spec);
     }
-    with_bsp(&mesh, |tree, figures| {
+    match with_bsp(&mesh, |tree, figures| {
         render_code_with::<Frac, WORDS>(&arrays, &mesh, Some((tree, figures)), cam, spec)
-    })?
+    }) {
+        Ok(frame) => frame,
+        // A mesh whose tree would need more fragments than face ids can name: the
+        // same engine without an order (planes where faces overlap), said aloud.
+        Err(e) => {
+            eprintln!("note: {e}; rendering with --engine scanline instead");
+            let mut frame = render_code_with::<Frac, WORDS>(&arrays, &mesh, None, cam, spec)?;
+            frame.stats.push(("depth_order_fallback".into(), 1));
+            Ok(frame)
+        }
+    }
 }
 
 fn render_code_with<Frac: LeEqU32, const WORDS: usize>(

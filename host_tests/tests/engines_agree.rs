@@ -13,6 +13,7 @@
 //!   over the run (0.42 % measured). Both are compared with the f64 reference on
 //!   every scene, and over the run code fill may not have more holes, wrong faces,
 //!   depth-order errors or far id differences than the Z-buffer (+2).
+//!
 //! Scenes: random boxes (many interpenetrating), random triangle soups (open,
 //! crossing, coplanar pairs), random cameras from every side, perspective and
 //! orthographic, random sizes, sub-pixel bits, band heights and culling.
@@ -231,27 +232,6 @@ fn scanline_draws_the_z_buffer_frame_on_random_scenes() {
         failures.len(),
         failures.join("\n")
     );
-}
-
-/// Pixels the Z-buffer covers, with all eight neighbours covered, that `c` leaves
-/// empty.
-fn holes(z: &Frame, c: &Frame) -> usize {
-    let (w, h) = (z.width, z.height);
-    let covered = |i: isize, j: isize| {
-        i < 0
-            || j < 0
-            || i >= w as isize
-            || j >= h as isize
-            || z.ids[j as usize * w + i as usize] != 0
-    };
-    (0..w * h)
-        .filter(|&k| {
-            let (i, j) = ((k % w) as isize, (k / w) as isize);
-            c.ids[k] == 0
-                && z.ids[k] != 0
-                && (-1..=1).all(|dj| (-1..=1).all(|di| covered(i + di, j + dj)))
-        })
-        .count()
 }
 
 #[test]

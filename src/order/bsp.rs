@@ -11,9 +11,12 @@ use crate::Error;
 pub const NO_NODE: u32 = u32::MAX;
 
 /// The relative tolerance of the build: a vertex whose distance to a node's plane is
-/// at most `PLANE_TOLERANCE * L`, where `L` is the largest absolute vertex coordinate
-/// of the mesh, counts as lying on the plane (2^-17, about 128 f32 ulps of `L`).
-pub const PLANE_TOLERANCE: f64 = 1.0 / 131_072.0;
+/// at most `PLANE_TOLERANCE * L`, where `L` is the vertex's largest absolute
+/// coordinate, counts as lying on the plane (2^-21,
+/// about 8 f32 ulps of `L`: the rounding of the positions, local to them, so that
+/// faces 1e-4 apart at depth 100, or small faces beside a vertex far away, are not
+/// taken for coplanar).
+pub const PLANE_TOLERANCE: f64 = 1.0 / 2_097_152.0;
 
 /// One node of the tree: a plane (from its first fragment's face) and the fragments
 /// lying in it.

@@ -25,12 +25,7 @@ pub(super) fn run<'s>(
         seams,
         work,
     } = storage;
-    let scale = mesh
-        .vertices()
-        .iter()
-        .flatten()
-        .fold(0.0f64, |m, &c| m.max(f64::from(c).abs()));
-    let tolerance = PLANE_TOLERANCE * scale;
+    let tolerance = PLANE_TOLERANCE;
     let mut out = Output {
         vertices,
         vertex_count: 0,

@@ -11,12 +11,15 @@ pub(super) enum Side {
 }
 
 /// A plane `n . p + d = 0` with an unnormalised normal `n`, and the square of the
-/// tolerance scaled by `|n|^2`, so that classifying needs no square root.
+/// relative tolerance scaled by `|n|^2`, so that classifying needs no square root.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) struct Plane {
     pub n: [f64; 3],
     pub d: f64,
-    /// `tolerance^2 * |n|^2`: a point with `(n . p + d)^2 <= limit` is on the plane.
+    /// `tolerance^2 * |n|^2`: a point p with `(n . p + d)^2 <= limit * m^2` is on the
+    /// plane, where m is p's largest absolute coordinate: the rounding of an f32
+    /// position grows with its own magnitude, not with the mesh's (nor with that of a
+    /// far vertex of the plane's face).
     pub limit: f64,
 }
 
@@ -73,9 +76,10 @@ impl Plane {
         dot(self.n, p.map(f64::from)) + self.d
     }
 
-    /// Side of a distance from [`Plane::distance`].
-    pub fn side_of(&self, s: f64) -> Side {
-        if s * s <= self.limit {
+    /// Side of point `p` at distance `s` from [`Plane::distance`].
+    pub fn side_of(&self, s: f64, p: [f32; 3]) -> Side {
+        let m = p.iter().fold(0.0f64, |m, &c| m.max(f64::from(c).abs()));
+        if s * s <= self.limit * m * m {
             Side::On
         } else if s > 0.0 {
             Side::Front
@@ -151,7 +155,7 @@ impl Tally {
         let mut previous = idx.last().map(|&i| exact_side(distance(i)));
         for &i in idx {
             let s = distance(i);
-            match plane.side_of(s) {
+            match plane.side_of(s, vertex(vertices, i)) {
                 Side::Front => tally.front += 1,
                 Side::Back => tally.back += 1,
                 Side::On => tally.on += 1,
@@ -219,7 +223,9 @@ pub(super) fn split_point(vertices: &[[f32; 3]], a: u32, sa: f64, b: u32, sb: f6
         (sp / denominator).clamp(0.0, 1.0)
     };
     // f64 to the nearest f32: the stored split point.
-    core::array::from_fn(|k| (p[k] + t * (q[k] - p[k])) as f32)
+    let [px, py, pz] = p;
+    let [qx, qy, qz] = q;
+    [px + t * (qx - px), py + t * (qy - py), pz + t * (qz - pz)].map(|c| c as f32)
 }
 
 /// Work-stack records: `[word, len, idx_0 .. idx_len-1]`, where `word` holds the

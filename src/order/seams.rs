@@ -111,7 +111,11 @@ impl Seams<'_> {
             return Key::End;
         }
         let [p, q, x] = [r[0], r[1], v].map(|i| vertex(self.vertices, i).map(f64::from));
-        let t = (0..3).fold(0.0, |t, k| t + (x[k] - p[k]) * (q[k] - p[k]));
+        let t = x
+            .iter()
+            .zip(&p)
+            .zip(&q)
+            .fold(0.0, |t, ((x, p), q)| t + (x - p) * (q - p));
         Key::At(ordered(t), self.bits(v))
     }
 
