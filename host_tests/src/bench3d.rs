@@ -65,10 +65,11 @@ const FACE_EDGES: usize = 64;
 /// A visibility engine of the table.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 pub enum Engine {
-    /// The code-fill engine in a BSP tree's depth order (weight-1 codes).
+    /// The code-fill engine in a BSP tree's depth order (weight-1 codes), bit-sliced
+    /// rows (`RowCodes::BitSliced`).
     CodeFill,
-    /// The same with bit-sliced rows (`RowCodes::BitSliced`).
-    CodeFillSliced,
+    /// The same with the crossing list (`RowCodes::Crossings`).
+    CodeFillCrossings,
     /// The code-fill engine without an order: planes where faces overlap.
     Scanline,
     ZBuffer16,
@@ -89,8 +90,8 @@ impl Renderer {
     pub const ALL: [Renderer; 9] = [
         Renderer::new(Engine::CodeFill, None),
         Renderer::new(Engine::CodeFill, Some(8)),
-        Renderer::new(Engine::CodeFillSliced, None),
-        Renderer::new(Engine::CodeFillSliced, Some(8)),
+        Renderer::new(Engine::CodeFillCrossings, None),
+        Renderer::new(Engine::CodeFillCrossings, Some(8)),
         Renderer::new(Engine::Scanline, None),
         Renderer::new(Engine::Scanline, Some(8)),
         Renderer::new(Engine::ZBuffer32, None),
@@ -105,7 +106,7 @@ impl Renderer {
     fn key(self) -> String {
         let engine = match self.engine {
             Engine::CodeFill => "codefill",
-            Engine::CodeFillSliced => "codefill-sliced",
+            Engine::CodeFillCrossings => "codefill-crossings",
             Engine::Scanline => "scanline",
             Engine::ZBuffer16 => "zbuffer16",
             Engine::ZBuffer32 => "zbuffer32",
@@ -120,10 +121,10 @@ impl Renderer {
     fn label(self) -> String {
         let engine = match self.engine {
             Engine::CodeFill => format!(
-                "CodeFillRenderer<U4, {ORDER_WORDS}, {ACTIVE_FACES}, {ACTIVE_EDGES}, {POLY}>, BSP order"
-            ),
-            Engine::CodeFillSliced => format!(
                 "CodeFillRenderer<U4, {ORDER_WORDS}, {ACTIVE_FACES}, {ACTIVE_EDGES}, {POLY}>, BSP order, bit-sliced rows"
+            ),
+            Engine::CodeFillCrossings => format!(
+                "CodeFillRenderer<U4, {ORDER_WORDS}, {ACTIVE_FACES}, {ACTIVE_EDGES}, {POLY}>, BSP order, crossings"
             ),
             Engine::Scanline => format!(
                 "CodeFillRenderer<U4, {CODE_WORDS}, {ACTIVE_FACES}, {ACTIVE_EDGES}, {POLY}>, planes"
@@ -271,7 +272,7 @@ fn draw_sized<const W: usize, const H: usize, const N: usize>(
         Engine::ZBuffer32 => z_buffer::<W, H, N, u32>(&scene, band).map_err(Refusal::Library),
         Engine::Scanline => code_fill_rung::<W, H, N, CODE_WORDS>(&scene, None, band, false, rung),
         _ => {
-            let sliced = renderer.engine == Engine::CodeFillSliced;
+            let sliced = renderer.engine == Engine::CodeFill;
             // The tree is built once per mesh, before the measured region; its kept
             // storage counts as working RAM.
             with_bsp(&scene.mesh, |tree, figures| {

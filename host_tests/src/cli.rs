@@ -27,7 +27,7 @@ rendering
   --crease DEG         crease angle in [0, 180] (default 30)
   --cull on|off|auto   back-face culling (default auto: on for closed meshes)
   --mode M             wireframe | hidden | dashed | surfaces | surfaces+dashed (default dashed)
-  --engine E           codefill | codefill-sliced | scanline | zbuffer (default codefill)
+  --engine E           codefill | codefill-crossings | scanline | zbuffer (default codefill)
   --subpixel S         sub-pixel bits 0..=12 (default 4)
   --depth-bits 16|32   depth precision (default 32)
   --band ROWS          rows per depth band, 1..=height (default: the height)
@@ -291,7 +291,7 @@ where
             }
             "--engine" => {
                 o.spec.engine = EngineSpec::by_name(&v).ok_or_else(|| {
-                    format!("--engine: `{v}` is not codefill, codefill-sliced, scanline or zbuffer")
+                    format!("--engine: `{v}` is not codefill, codefill-crossings, scanline or zbuffer")
                 })?
             }
             "--subpixel" => o.spec.subpixel = int_in(flag, &v, 0, 12)? as u32,

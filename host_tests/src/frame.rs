@@ -74,11 +74,12 @@ pub enum ModeSpec {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum EngineSpec {
     /// Modulo-2 surface codes per row in a BSP tree's depth order (weight-1 codes,
-    /// priority encoder), no depth buffer.
+    /// priority encoder), no depth buffer; every pixel's code in words
+    /// (`RowCodes::BitSliced`), the faster representation in depth order.
     #[default]
     CodeFill,
-    /// The same engine with every pixel's code in words (`RowCodes::BitSliced`).
-    CodeFillSliced,
+    /// The same engine with the row's crossings in order (`RowCodes::Crossings`).
+    CodeFillCrossings,
     /// The code-fill engine without an order: planes compared where faces overlap
     /// (the scan-line method of notes 004).
     Scanline,
@@ -90,7 +91,7 @@ impl EngineSpec {
     /// Every engine, in the order the `--engine` help lists them.
     pub const ALL: [EngineSpec; 4] = [
         EngineSpec::CodeFill,
-        EngineSpec::CodeFillSliced,
+        EngineSpec::CodeFillCrossings,
         EngineSpec::Scanline,
         EngineSpec::ZBuffer,
     ];
@@ -99,7 +100,7 @@ impl EngineSpec {
     pub fn name(self) -> &'static str {
         match self {
             EngineSpec::CodeFill => "codefill",
-            EngineSpec::CodeFillSliced => "codefill-sliced",
+            EngineSpec::CodeFillCrossings => "codefill-crossings",
             EngineSpec::Scanline => "scanline",
             EngineSpec::ZBuffer => "zbuffer",
         }

@@ -254,7 +254,7 @@ fn render_s<Frac: LeEqU32>(
 ) -> Result<Frame, String> {
     if matches!(
         spec.engine,
-        EngineSpec::CodeFill | EngineSpec::CodeFillSliced | EngineSpec::Scanline
+        EngineSpec::CodeFill | EngineSpec::CodeFillCrossings | EngineSpec::Scanline
     ) {
         return match render_code::<Frac, 4>(mesh, cam, spec) {
             Err(e) if e.contains("surface code") => render_code::<Frac, 32>(mesh, cam, spec),
@@ -377,7 +377,7 @@ fn frame(
 }
 
 /// The code-fill engine: no depth buffer; ids for the band and its apron. `codefill`
-/// and `codefill-sliced` render in the depth order of a BSP tree built once for the
+/// and `codefill-crossings` render in the depth order of a BSP tree built once for the
 /// mesh (its build is timed apart, its storage counted in the working RAM);
 /// `scanline` compares planes where faces overlap.
 fn render_code<Frac: LeEqU32, const WORDS: usize>(
@@ -443,7 +443,7 @@ fn render_code_with<Frac: LeEqU32, const WORDS: usize>(
     let mut target = PackedFrame::new(w, h);
     let mut probe = Collect::new(w, h);
     // Bit-sliced rows: every pixel's code, up to WORDS words.
-    let sliced = spec.engine == EngineSpec::CodeFillSliced;
+    let sliced = spec.engine == EngineSpec::CodeFill;
     let mut words = vec![0u32; if sliced { w * WORDS } else { 0 }];
     let codes = if sliced {
         RowCodes::BitSliced(&mut words)

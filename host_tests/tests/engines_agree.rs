@@ -255,7 +255,7 @@ fn code_fill_in_depth_order_is_as_faithful_as_the_z_buffer_on_random_scenes() {
         let s = render_frame(
             &sc.mesh,
             &sc.cam,
-            &with_engine(&sc.spec, EngineSpec::CodeFillSliced),
+            &with_engine(&sc.spec, EngineSpec::CodeFillCrossings),
         );
         match (z, c, s) {
             (Ok(z), Ok(c), Ok(s)) => {

@@ -49,7 +49,7 @@ fn run_scene(
         for (engine, band, depth_bits) in [
             (EngineSpec::CodeFill, height, 32),
             (EngineSpec::Scanline, height, 32),
-            (EngineSpec::CodeFillSliced, 8, 32),
+            (EngineSpec::CodeFillCrossings, 8, 32),
             (EngineSpec::ZBuffer, height, 32),
             (EngineSpec::ZBuffer, 8, 16),
         ] {
@@ -126,7 +126,7 @@ fn run_scene(
 /// The measured deviations from the limits, kept visible and bounded rather
 /// than hidden.
 ///
-/// Suzanne at 400x240 in a BSP tree's depth order (`codefill`, `codefill-sliced`):
+/// Suzanne at 400x240 in a BSP tree's depth order (`codefill`, `codefill-crossings`):
 /// 2 depth-order errors and 5 far id differences (of 20,537 covered pixels). Traced:
 /// suzanne's quads are not planar (face 115 is 1.3e-2 off its Newell plane, 336
 /// times the tree's tolerance); the tree orders a non-planar face as its plane, so
@@ -151,7 +151,7 @@ fn run_scene(
 fn known_deviation(label: &str, m: &SceneMetrics) -> Option<&'static str> {
     if let Some(sm) = &m.surfaces {
         let ordered = label.starts_with("suzanne 400x240 surf codefill ")
-            || label.starts_with("suzanne 400x240 surf codefill-sliced ");
+            || label.starts_with("suzanne 400x240 surf codefill-crossings ");
         let bounded =
             sm.holes == 0 && sm.wrong_faces == 0 && sm.depth_order <= 4 && sm.far_diffs <= 10;
         return (ordered && bounded && m.lines.is_none())

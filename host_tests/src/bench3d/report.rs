@@ -9,6 +9,7 @@ use crate::callgrind::{
     cpu_model, finish_report, measure_all, ratio, report_header, thousands, tool_version, Measured,
     Table,
 };
+use crate::frame::{EngineSpec, RenderSpec};
 use crate::image::{count_diff, count_set};
 use crate::pipeline::render_frame;
 
@@ -41,7 +42,7 @@ fn draw_rows(view: &View, model: &'static str) -> Vec<Row> {
             let roomier = (refused
                 && matches!(
                     renderer.engine,
-                    Engine::CodeFill | Engine::CodeFillSliced | Engine::Scanline
+                    Engine::CodeFill | Engine::CodeFillCrossings | Engine::Scanline
                 ))
             .then(|| {
                 (0..ROOMIER.len())
@@ -65,7 +66,14 @@ fn draw_rows(view: &View, model: &'static str) -> Vec<Row> {
 /// and tells how far the baseline is from it.
 fn check_rows(view: &View, rows: &[Row], failures: &mut Vec<String>) -> Result<String, String> {
     let (w, h) = view.size;
-    let reference = render_frame(&view.data, &view.camera, &view.spec())?.packed;
+    // Two pictures: in a BSP tree's depth order, and with depths compared (scan-line,
+    // Z-buffer), each render_frame's for its engine.
+    let spec = |engine| RenderSpec {
+        engine,
+        ..view.spec()
+    };
+    let ordered = render_frame(&view.data, &view.camera, &spec(EngineSpec::CodeFill))?.packed;
+    let compared = render_frame(&view.data, &view.camera, &spec(EngineSpec::Scanline))?.packed;
     let mut library = 0;
     for row in rows {
         let Some(d) = row.drawn() else { continue };
@@ -73,11 +81,15 @@ fn check_rows(view: &View, rows: &[Row], failures: &mut Vec<String>) -> Result<S
             continue;
         }
         library += 1;
-        if d.bytes != reference {
+        let reference = match row.job.renderer.engine {
+            Engine::CodeFill | Engine::CodeFillCrossings => &ordered,
+            _ => &compared,
+        };
+        if d.bytes != *reference {
             failures.push(format!(
                 "{}: the frame differs from render_frame's in {} px",
                 row.job.key(),
-                count_diff(&d.bytes, &reference, w, h)
+                count_diff(&d.bytes, reference, w, h)
             ));
         }
     }
@@ -85,9 +97,10 @@ fn check_rows(view: &View, rows: &[Row], failures: &mut Vec<String>) -> Result<S
         .iter()
         .find(|r| r.job.renderer.engine == Engine::Baseline)
         .and_then(Row::drawn)
-        .map_or(0, |d| count_diff(&d.bytes, &reference, w, h));
+        .map_or(0, |d| count_diff(&d.bytes, &compared, w, h));
+    let between = count_diff(&ordered, &compared, w, h);
     Ok(format!(
-        "{} {w} x {h}: {library} library frames identical to each other and to render_frame's: {}; f32 baseline differs in {baseline} of {} px",
+        "{} {w} x {h}: {library} library frames identical to render_frame's for their engine (depth order / depths compared, which differ in {between} px): {}; f32 baseline differs from the depth-compared frame in {baseline} of {} px",
         rows[0].job.model,
         if failures.iter().any(|f| f.starts_with(&format!("{}/{w}x{h}/", rows[0].job.model))) {
             "NO"

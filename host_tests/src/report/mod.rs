@@ -24,7 +24,7 @@ use crate::shapes;
 /// an engine to the report is one line here.
 pub const ENGINES: &[(EngineSpec, &str, bool)] = &[
     (EngineSpec::CodeFill, "codefill", false),
-    (EngineSpec::CodeFillSliced, "codefill-sliced", false),
+    (EngineSpec::CodeFillCrossings, "codefill-crossings", false),
     (EngineSpec::Scanline, "scanline", false),
     (EngineSpec::ZBuffer, "zbuffer", true),
 ];

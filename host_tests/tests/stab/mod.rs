@@ -48,7 +48,7 @@ pub const EXACT: [Config; 5] = [
         depth_bits: 32,
     },
     Config {
-        engine: EngineSpec::CodeFillSliced,
+        engine: EngineSpec::CodeFillCrossings,
         band: 8,
         depth_bits: 32,
     },
@@ -225,7 +225,7 @@ pub fn check(
         // (both row representations) with each other.
         let ordered = matches!(
             config.engine,
-            EngineSpec::CodeFill | EngineSpec::CodeFillSliced
+            EngineSpec::CodeFill | EngineSpec::CodeFillCrossings
         );
         let same = if ordered {
             &mut first_ordered
