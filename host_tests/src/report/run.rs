@@ -85,14 +85,40 @@ pub fn scene_bounds(mesh: &crate::frame::MeshData, cam: &CameraSpec, layers: usi
     }
 }
 
-/// The configurations the recommendation gives: code fill at its S, the Z-buffer
-/// at its S and depth bits (and at 32 bits, the comparison for its depth check).
+/// The code-fill engine whose code width the recommendation's code words describe
+/// (the most faces over one pixel): the scan-line engine. In a depth order the code
+/// is as wide as the fragments active on a row, which `recommend` does not model.
+pub fn recommended_code_engine() -> usize {
+    ENGINES
+        .iter()
+        .position(|e| e.0 == pbuffer_engine_scanline())
+        .unwrap_or(0)
+}
+
+fn pbuffer_engine_scanline() -> crate::frame::EngineSpec {
+    crate::frame::EngineSpec::Scanline
+}
+
+/// The configurations the recommendation gives: scan-line code fill at its S (and at
+/// S = 8, the floor of what S controls), the Z-buffer at its S and depth bits (and at
+/// 32 bits, the comparison for its depth check).
 pub fn recommended_configs(rec: &Recommendation) -> Vec<Config> {
     let zbuffer = ENGINES.iter().position(|e| e.2);
-    let mut v = vec![Config {
-        subpixel: rec.subpixel_bits,
+    let code = Config {
+        engine: recommended_code_engine(),
         ..Config::DEFAULT
-    }];
+    };
+    let mut v = vec![
+        Config {
+            subpixel: rec.subpixel_bits,
+            ..code
+        },
+        Config {
+            subpixel: 8,
+            ..code
+        },
+    ];
+    v.dedup();
     if let Some(e) = zbuffer {
         for bits in [rec.depth_bits, 32] {
             let c = Config {

@@ -169,14 +169,15 @@ pub fn recommendation_table(res: &Results) -> (String, usize, usize) {
         // What S does not control: the edge displacement left at S = 8.
         let floor = find(&Config {
             subpixel: 8,
+            engine: super::run::recommended_code_engine(),
             ..Config::DEFAULT
         })
         .map_or(0.0, |r| r.errors.edge_max);
         let cfgs = super::run::recommended_configs(&c.rec);
-        for cfg in cfgs
-            .iter()
-            .filter(|g| g.depth_bits != Some(32) || c.rec.depth_bits == 32)
-        {
+        for cfg in cfgs.iter().filter(|g| {
+            (g.depth_bits != Some(32) || c.rec.depth_bits == 32)
+                && g.subpixel == c.rec.subpixel_bits
+        }) {
             let Some(r) = find(cfg) else {
                 continue;
             };
