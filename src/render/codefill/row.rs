@@ -34,6 +34,10 @@ impl<
         out: &mut [u16],
     ) -> Result<u32, Error> {
         self.enter_row(ctx, fill, vertices, order, y)?;
+        // (Bit-sliced rows give every live face its place themselves.)
+        if self.priority {
+            self.assign_priority_bits();
+        }
         let width = out.len() as u16;
         let row = i32::from(y);
         self.edges.move_to_row(row, ctx.s, width);
@@ -119,9 +123,6 @@ impl<
         self.activate(ctx, fill, vertices, order, y)?;
         self.peak_faces = self.peak_faces.max(self.live.len());
         self.peak_edges = self.peak_edges.max(self.edges.len());
-        if self.priority {
-            self.assign_priority_bits();
-        }
         Ok(())
     }
 
