@@ -20,6 +20,48 @@ pub struct BspFigures {
     pub build_us: u64,
 }
 
+/// Owned storage for one BSP build, sized by [`BspSizes`].
+pub struct BspBuffers {
+    vertices: Vec<[f32; 3]>,
+    indices: Vec<u32>,
+    offsets: Vec<u32>,
+    source: Vec<u16>,
+    nodes: Vec<BspNode>,
+    seams: Vec<[u32; 2]>,
+    work: Vec<u32>,
+}
+
+impl BspBuffers {
+    /// Buffers of exactly these sizes.
+    pub fn new(sizes: BspSizes) -> Self {
+        Self {
+            vertices: vec![[0f32; 3]; sizes.vertices],
+            indices: vec![0u32; sizes.indices],
+            offsets: vec![0u32; sizes.offsets],
+            source: vec![0u16; sizes.source],
+            nodes: vec![BspNode::default(); sizes.nodes],
+            seams: vec![[0u32; 2]; sizes.seams],
+            work: vec![0u32; sizes.work],
+        }
+    }
+
+    /// Builds the tree of `mesh` into these buffers.
+    pub fn build(&mut self, mesh: &Mesh<'_>) -> Result<BspTree<'_>, Error> {
+        BspTree::build(
+            mesh,
+            BspStorage {
+                vertices: &mut self.vertices,
+                indices: &mut self.indices,
+                offsets: &mut self.offsets,
+                source: &mut self.source,
+                nodes: &mut self.nodes,
+                seams: &mut self.seams,
+                work: &mut self.work,
+            },
+        )
+    }
+}
+
 /// Builds the BSP tree of `mesh` (growing the lent storage from a guess of one split
 /// per face until it fits) and hands it to `f`.
 pub fn with_bsp<R>(
@@ -34,26 +76,9 @@ pub fn with_bsp<R>(
             mesh.indices().len(),
             splits,
         );
-        let mut vertices = vec![[0f32; 3]; sizes.vertices];
-        let mut indices = vec![0u32; sizes.indices];
-        let mut offsets = vec![0u32; sizes.offsets];
-        let mut source = vec![0u16; sizes.source];
-        let mut nodes = vec![BspNode::default(); sizes.nodes];
-        let mut seams = vec![[0u32; 2]; sizes.seams];
-        let mut work = vec![0u32; sizes.work];
+        let mut buffers = BspBuffers::new(sizes);
         let start = Instant::now();
-        let built = BspTree::build(
-            mesh,
-            BspStorage {
-                vertices: &mut vertices,
-                indices: &mut indices,
-                offsets: &mut offsets,
-                source: &mut source,
-                nodes: &mut nodes,
-                seams: &mut seams,
-                work: &mut work,
-            },
-        );
+        let built = buffers.build(mesh);
         let build_us = start.elapsed().as_micros() as u64;
         match built {
             Ok(tree) => {

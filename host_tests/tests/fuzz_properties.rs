@@ -25,9 +25,10 @@ use std::time::Instant;
 
 use fixed::types::extra::{LeEqU32, U0, U12, U4};
 use fuzzgen::{finite, panic_message, raw_camera, raw_mesh, wild, RawCamera, RawMesh, Recorder};
+use host_tests::bsp::BspBuffers;
 use host_tests::random::Rng;
 use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
-use pbuffer::order::{BspNode, BspSizes, BspStorage, BspTree};
+use pbuffer::order::BspSizes;
 use pbuffer::render::{storage_rows, Depth, ProjectedVertex, RowCodes};
 use pbuffer::{
     Camera, CodeFillRenderer, CodeWorkspace, Cull, DepthOrder, DrawMode, Error, MonoPalette,
@@ -81,25 +82,8 @@ fn render_ordered<F: LeEqU32>(job: &Job, sink: &mut Recorder) -> Result<Stats, E
         mesh.indices().len(),
         2 * mesh.face_count() + 8,
     );
-    let mut vertices = vec![[0f32; 3]; sizes.vertices];
-    let mut indices = vec![0u32; sizes.indices];
-    let mut offsets = vec![0u32; sizes.offsets];
-    let mut source = vec![0u16; sizes.source];
-    let mut nodes = vec![BspNode::default(); sizes.nodes];
-    let mut seams = vec![[0u32; 2]; sizes.seams];
-    let mut work = vec![0u32; sizes.work];
-    let tree = BspTree::build(
-        mesh,
-        BspStorage {
-            vertices: &mut vertices,
-            indices: &mut indices,
-            offsets: &mut offsets,
-            source: &mut source,
-            nodes: &mut nodes,
-            seams: &mut seams,
-            work: &mut work,
-        },
-    )?;
+    let mut buffers = BspBuffers::new(sizes);
+    let tree = buffers.build(mesh)?;
     let mut rank = vec![0u32; tree.fragment_count()];
     let mut stack = vec![0u32; tree.depth()];
     tree.rank_front_to_back(&job.camera.viewpoint(), &mut stack, &mut rank)?;
