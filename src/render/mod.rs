@@ -11,7 +11,10 @@
 mod active;
 mod codefill;
 mod compose;
+mod coverage;
+mod idpass;
 mod lines;
+mod painter;
 mod transform;
 mod zband;
 mod zbuffer;
@@ -21,6 +24,8 @@ use heapless::Vec;
 
 pub use codefill::{CodeFillRenderer, CodeWorkspace, DepthOrder, RowCodes, Visibility};
 pub use compose::{FrameProbe, MonoPalette, Palette, SolidPalette};
+pub use idpass::IdWorkspace;
+pub use painter::{PaintOrder, PainterRenderer};
 pub use transform::{ClipVertex, ProjectedVertex, ScreenVertex};
 pub use zband::Depth;
 pub use zbuffer::ZBufferRenderer;

@@ -114,7 +114,7 @@ pub struct DepthOrder<'o> {
 impl DepthOrder<'_> {
     /// Whether this order was made for `mesh`: its vertices begin with the mesh's,
     /// every surface has a source face of the mesh and a rank.
-    fn fits(&self, mesh: &Mesh<'_>) -> bool {
+    pub(crate) fn fits(&self, mesh: &Mesh<'_>) -> bool {
         let n = self.surfaces.face_count();
         let v = mesh.vertices();
         self.source.len() >= n

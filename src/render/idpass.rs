@@ -1,0 +1,165 @@
+//! The frame loop shared by the engines that only fill face ids (no depth band):
+//! the painter's and list-priority orders, area subdivision and ray casting. Each
+//! engine is an [`IdPass`]; the loop around it (front end, line pass, composition)
+//! is the one every engine uses.
+
+use embedded_graphics_core::pixelcolor::PixelColor;
+
+use super::compose::{self, FrameProbe, Palette};
+use super::lines::{line_pass, LineMasks};
+use super::transform::ProjectedVertex;
+use super::zband::IdBand;
+use super::{band_rows, begin_frame, FrameCtx, Settings, Stats};
+use crate::camera::Camera;
+use crate::mesh::{EdgeAdjacency, Mesh};
+use crate::{Error, SpanSink};
+
+/// Storage the caller lends for one frame of an id-filling engine. Sizes:
+/// `vertices` >= the vertex count of what is drawn (the mesh's, or a depth order's
+/// surfaces'); `drawn` >= faces / 32 words; `features` >= edges / 32 words; `ids` >=
+/// width x [`storage_rows`](super::storage_rows); `lines` >= 2 x ceil(width / 32) x
+/// band rows. The band height follows from `ids.len() / width`, as for
+/// [`Workspace`](super::Workspace).
+#[derive(Debug)]
+pub struct IdWorkspace<'s> {
+    /// The per-frame vertex cache.
+    pub vertices: &'s mut [ProjectedVertex],
+    /// One bit per mesh face: drawn in this view (not culled).
+    pub drawn: &'s mut [u32],
+    /// One bit per mesh edge: a feature edge in this view.
+    pub features: &'s mut [u32],
+    /// Face ids of the band (0 none, else 1 + face).
+    pub ids: &'s mut [u16],
+    /// Line masks of the band.
+    pub lines: &'s mut [u32],
+}
+
+impl IdWorkspace<'_> {
+    /// Bytes of all the lent buffers.
+    pub fn bytes(&self) -> usize {
+        use core::mem::size_of_val;
+        size_of_val(self.vertices)
+            + size_of_val(self.drawn)
+            + size_of_val(self.features)
+            + size_of_val(self.ids)
+            + size_of_val(self.lines)
+    }
+}
+
+/// One visibility engine that fills face ids.
+pub(crate) trait IdPass {
+    /// Once per frame, after the vertices are transformed and the drawn faces marked.
+    fn begin(
+        &mut self,
+        ctx: &FrameCtx<'_, '_>,
+        vertices: &[ProjectedVertex],
+        drawn: &[u32],
+    ) -> Result<(), Error>;
+
+    /// Fills every held row of `band` (its own rows and the apron) with the id of the
+    /// visible face at each pixel (0 none); returns a count for `Stats::spans`.
+    fn fill(
+        &mut self,
+        ctx: &FrameCtx<'_, '_>,
+        vertices: &[ProjectedVertex],
+        drawn: &[u32],
+        band: &mut IdBand<'_>,
+    ) -> Result<u32, Error>;
+}
+
+/// What one id-filling frame draws: the mesh, and the vertex positions the engine's
+/// polygons index (the mesh's, or a depth order's surfaces', which begin with them).
+pub(crate) struct FrameInput<'a, 'm> {
+    pub mesh: &'a Mesh<'m>,
+    pub positions: &'a [[f32; 3]],
+    pub edges: &'a EdgeAdjacency<'a>,
+    pub camera: &'a Camera,
+    pub settings: &'a Settings,
+    pub s: u32,
+}
+
+/// Renders one frame with `pass` deciding the visible faces.
+pub(crate) fn render_ids<
+    const POLY: usize,
+    E: IdPass,
+    K: SpanSink,
+    P: Palette<Color = K::Color>,
+    R: FrameProbe,
+>(
+    pass: &mut E,
+    input: &FrameInput<'_, '_>,
+    ws: &mut IdWorkspace<'_>,
+    palette: &P,
+    sink: &mut K,
+    probe: &mut R,
+) -> Result<Stats, Error<K::Error>>
+where
+    K::Color: PixelColor,
+{
+    let viewport = sink.viewport();
+    let (width, height) = (viewport.width, viewport.height);
+    let row_words = usize::from(width).div_ceil(32);
+    let band_rows = band_rows(viewport, ws.ids.len(), ws.lines.len()).map_err(Error::widen)?;
+    let mut stats = Stats {
+        band_rows: u32::from(band_rows),
+        ..Stats::default()
+    };
+    let ctx = begin_frame(
+        input.mesh,
+        input.positions,
+        input.edges,
+        input.camera,
+        input.settings,
+        viewport,
+        input.s,
+        ws.vertices,
+        ws.drawn,
+        ws.features,
+        &mut stats,
+    )
+    .map_err(Error::widen)?;
+    let IdWorkspace {
+        vertices,
+        drawn,
+        features,
+        ids,
+        lines,
+    } = ws;
+    let settings = input.settings;
+    if settings.mode.needs_depth() {
+        pass.begin(&ctx, vertices, drawn).map_err(Error::widen)?;
+    }
+    let mut band = IdBand::new(ids, width);
+    let mut masks = LineMasks {
+        words: lines,
+        row_words,
+        rows: 0,
+    };
+    let mut top = 0u16;
+    while top < height && band_rows > 0 {
+        let rows = band_rows.min(height - top);
+        band.held = 0;
+        band.advance(top, rows, height);
+        let n = usize::from(width) * usize::from(band.held);
+        if let Some(held) = band.ids.get_mut(..n) {
+            held.fill(0);
+        }
+        masks.reset(rows);
+        stats.bands += 1;
+        if settings.mode.needs_depth() {
+            stats.spans += pass
+                .fill(&ctx, vertices, drawn, &mut band)
+                .map_err(Error::widen)?;
+        }
+        if settings.mode.draws_lines() {
+            line_pass::<POLY>(
+                &ctx, vertices, drawn, features, input.edges, settings, &band, &mut masks,
+            );
+        }
+        stats.spans += compose::emit_band(&ctx, settings, &band, &masks, drawn, palette, sink, probe)
+            .map_err(Error::Target)?;
+        top += rows;
+    }
+    sink.flush().map_err(Error::Target)?;
+    Ok(stats)
+}
