@@ -27,7 +27,8 @@ rendering
   --crease DEG         crease angle in [0, 180] (default 30)
   --cull on|off|auto   back-face culling (default auto: on for closed meshes)
   --mode M             wireframe | hidden | dashed | surfaces | surfaces+dashed (default dashed)
-  --engine E           codefill | codefill-crossings | scanline | zbuffer (default codefill)
+  --engine E           codefill | codefill-crossings | scanline | zbuffer | painter | bsp
+                       (default codefill)
   --subpixel S         sub-pixel bits 0..=12 (default 4)
   --depth-bits 16|32   depth precision (default 32)
   --band ROWS          rows per depth band, 1..=height (default: the height)
@@ -291,7 +292,8 @@ where
             }
             "--engine" => {
                 o.spec.engine = EngineSpec::by_name(&v).ok_or_else(|| {
-                    format!("--engine: `{v}` is not codefill, codefill-crossings, scanline or zbuffer")
+                    let names: Vec<&str> = EngineSpec::ALL.iter().map(|e| e.name()).collect();
+                    format!("--engine: `{v}` is not one of {}", names.join(", "))
                 })?
             }
             "--subpixel" => o.spec.subpixel = int_in(flag, &v, 0, 12)? as u32,
@@ -550,7 +552,7 @@ mod tests {
             (&["--crease", "200"], "--crease"),
             (&["--cull", "maybe"], "--cull"),
             (&["--mode", "solid"], "--mode"),
-            (&["--engine", "raycast"], "--engine"),
+            (&["--engine", "phong"], "--engine"),
             (&["--subpixel", "13"], "--subpixel"),
             (&["--depth-bits", "24"], "--depth-bits"),
             (&["--band", "0"], "--band"),

@@ -85,15 +85,23 @@ pub enum EngineSpec {
     Scanline,
     /// Depth buffer in bands.
     ZBuffer,
+    /// The painter's algorithm: faces sorted by farthest depth, painted far to near,
+    /// no splitting (fails on cyclic overlap and interpenetration, by design).
+    Painter,
+    /// A BSP tree built once for the mesh, walked per view; its fragments painted far
+    /// to near.
+    Bsp,
 }
 
 impl EngineSpec {
     /// Every engine, in the order the `--engine` help lists them.
-    pub const ALL: [EngineSpec; 4] = [
+    pub const ALL: [EngineSpec; 6] = [
         EngineSpec::CodeFill,
         EngineSpec::CodeFillCrossings,
         EngineSpec::Scanline,
         EngineSpec::ZBuffer,
+        EngineSpec::Painter,
+        EngineSpec::Bsp,
     ];
 
     /// The engine's `--engine` name.
@@ -103,6 +111,8 @@ impl EngineSpec {
             EngineSpec::CodeFillCrossings => "codefill-crossings",
             EngineSpec::Scanline => "scanline",
             EngineSpec::ZBuffer => "zbuffer",
+            EngineSpec::Painter => "painter",
+            EngineSpec::Bsp => "bsp",
         }
     }
 
@@ -162,4 +172,22 @@ pub struct Frame {
     pub packed: Vec<u8>,
     /// Figures: faces, faces_drawn, feature_edges, spans, working_ram_bytes, ...
     pub stats: Vec<(String, u64)>,
+}
+
+impl Frame {
+    /// The figure named `name`, 0 when absent.
+    pub fn stat(&self, name: &str) -> u64 {
+        self.stats
+            .iter()
+            .find(|(n, _)| n == name)
+            .map_or(0, |(_, v)| *v)
+    }
+
+    /// Sets (or adds) the figure named `name`.
+    pub fn set_stat(&mut self, name: &str, value: u64) {
+        match self.stats.iter_mut().find(|(n, _)| n == name) {
+            Some((_, v)) => *v = value,
+            None => self.stats.push((name.into(), value)),
+        }
+    }
 }

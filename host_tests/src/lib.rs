@@ -4,6 +4,7 @@ pub mod bench3d;
 pub mod bsp;
 pub mod callgrind;
 pub mod cli;
+pub mod engines;
 pub mod fit;
 pub mod frame;
 pub mod image;

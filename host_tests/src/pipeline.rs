@@ -19,8 +19,8 @@ use crate::frame::{
 };
 
 /// Scan-converter edge capacity and clipped-polygon capacity used on the host.
-const EDGES: usize = 512;
-const POLY: usize = 512;
+pub(crate) const EDGES: usize = 512;
+pub(crate) const POLY: usize = 512;
 /// Code-fill engine on the host: active faces and edges. The code is 128 bits (4
 /// words), as on firmware; a frame that needs more is rendered again with 1024.
 pub const ACTIVE_FACES: usize = 2048;
@@ -83,7 +83,7 @@ impl SpanSink for PackedFrame {
 }
 
 /// Collects the `--ids` and `--lines` images.
-struct Collect {
+pub(crate) struct Collect {
     width: usize,
     ids: Vec<u32>,
     lines: Vec<u8>,
@@ -91,7 +91,7 @@ struct Collect {
 
 impl Collect {
     /// Empty images of `width` x `height`.
-    fn new(width: usize, height: usize) -> Self {
+    pub(crate) fn new(width: usize, height: usize) -> Self {
         Self {
             width,
             ids: vec![0; width * height],
@@ -261,6 +261,9 @@ fn render_s<Frac: LeEqU32>(
             other => other,
         };
     }
+    if matches!(spec.engine, EngineSpec::Painter | EngineSpec::Bsp) {
+        return crate::engines::render_painter::<Frac>(mesh, cam, spec);
+    }
     match spec.depth_bits {
         16 => render_sd::<Frac, u16>(mesh, cam, spec),
         32 => render_sd::<Frac, u32>(mesh, cam, spec),
@@ -339,7 +342,7 @@ fn render_sd<Frac: LeEqU32, D: Depth>(
 
 /// The frame and its `--stats` figures.
 #[allow(clippy::too_many_arguments)]
-fn frame(
+pub(crate) fn frame(
     w: usize,
     h: usize,
     probe: Collect,

@@ -153,11 +153,19 @@ where
         }
         if settings.mode.draws_lines() {
             line_pass::<POLY>(
-                &ctx, vertices, drawn, features, input.edges, settings, &band, &mut masks,
+                &ctx,
+                vertices,
+                drawn,
+                features,
+                input.edges,
+                settings,
+                &band,
+                &mut masks,
             );
         }
-        stats.spans += compose::emit_band(&ctx, settings, &band, &masks, drawn, palette, sink, probe)
-            .map_err(Error::Target)?;
+        stats.spans +=
+            compose::emit_band(&ctx, settings, &band, &masks, drawn, palette, sink, probe)
+                .map_err(Error::Target)?;
         top += rows;
     }
     sink.flush().map_err(Error::Target)?;

@@ -1,0 +1,156 @@
+//! The id-filling engines of issue 7 on the host: painter's list, BSP tree painted
+//! far to near, and (added by their own modules) the other classical methods. Each
+//! renders with the library exactly as firmware would, through `IdWorkspace`.
+
+use std::time::Instant;
+
+use fixed::types::extra::LeEqU32;
+use pbuffer::mesh::Mesh;
+use pbuffer::render::{IdWorkspace, PaintOrder, PainterRenderer, ProjectedVertex};
+use pbuffer::{DepthOrder, MonoPalette};
+
+use crate::bsp::with_bsp;
+use crate::callgrind::measured_region;
+use crate::frame::{CameraSpec, EngineSpec, Frame, MeshData, RenderSpec};
+use crate::pipeline::{
+    camera, frame, settings, AdjacencyStorage, Collect, MeshArrays, PackedFrame, EDGES, POLY,
+};
+
+/// Lent buffers of an id-filling frame, sized for `vertices` vertex positions.
+pub(crate) struct IdBuffers {
+    pub vertices: Vec<ProjectedVertex>,
+    pub drawn: Vec<u32>,
+    pub features: Vec<u32>,
+    pub ids: Vec<u16>,
+    pub lines: Vec<u32>,
+}
+
+impl IdBuffers {
+    pub fn new(spec: &RenderSpec, vertices: usize, faces: usize, edges: usize) -> Self {
+        let (w, h) = (spec.width, spec.height);
+        let band = spec.band.clamp(1, h.max(1));
+        let stored = usize::from(pbuffer::render::storage_rows(band as u16, h as u16));
+        Self {
+            vertices: vec![ProjectedVertex::default(); vertices],
+            drawn: vec![0; faces.div_ceil(32)],
+            features: vec![0; edges.div_ceil(32)],
+            ids: vec![0; w * stored],
+            lines: vec![0; 2 * w.div_ceil(32) * band],
+        }
+    }
+
+    pub fn workspace(&mut self) -> IdWorkspace<'_> {
+        IdWorkspace {
+            vertices: &mut self.vertices,
+            drawn: &mut self.drawn,
+            features: &mut self.features,
+            ids: &mut self.ids,
+            lines: &mut self.lines,
+        }
+    }
+}
+
+/// `painter` (faces by farthest depth) and `bsp` (the tree's fragments, walked per
+/// view), both painted far to near with no depth test.
+pub(crate) fn render_painter<Frac: LeEqU32>(
+    data: &MeshData,
+    cam: &CameraSpec,
+    spec: &RenderSpec,
+) -> Result<Frame, String> {
+    let arrays = MeshArrays::new(data);
+    let mesh = Mesh::new(&arrays.vertices, &arrays.indices, &arrays.offsets)
+        .map_err(|e| format!("mesh: {e}"))?;
+    if spec.engine == EngineSpec::Painter {
+        return paint_with::<Frac>(&arrays, &mesh, None, cam, spec);
+    }
+    with_bsp(&mesh, |tree, figures| {
+        let mut frame = paint_with::<Frac>(&arrays, &mesh, Some(tree), cam, spec)?;
+        frame.stats.extend([
+            ("bsp_fragments".into(), figures.fragments as u64),
+            ("bsp_bytes".into(), figures.kept_bytes as u64),
+            ("bsp_build_us".into(), figures.build_us),
+        ]);
+        let working = frame.stat("working_ram_bytes") + figures.kept_bytes as u64;
+        frame.set_stat("working_ram_bytes", working);
+        Ok(frame)
+    })?
+}
+
+fn paint_with<Frac: LeEqU32>(
+    arrays: &MeshArrays,
+    mesh: &Mesh<'_>,
+    tree: Option<&pbuffer::order::BspTree<'_>>,
+    cam: &CameraSpec,
+    spec: &RenderSpec,
+) -> Result<Frame, String> {
+    let mut storage = AdjacencyStorage::new(arrays);
+    let build_bytes = storage.build_bytes();
+    let adjacency = storage.build(mesh, spec.crease_deg)?;
+    let camera = camera(cam)?;
+    let settings = settings(spec)?;
+    let surfaces = tree.map_or(*mesh, |t| t.fragments());
+    let mut buffers = IdBuffers::new(
+        spec,
+        surfaces.vertices().len(),
+        mesh.face_count(),
+        adjacency.edges().len(),
+    );
+    let mut list = vec![0u64; surfaces.face_count()];
+    let mut rank = vec![0u32; tree.map_or(0, |t| t.fragment_count())];
+    let mut stack = vec![0u32; tree.map_or(0, |t| t.depth())];
+    let mut ws = buffers.workspace();
+    let lent = ws.bytes()
+        + std::mem::size_of_val(adjacency.edges())
+        + std::mem::size_of_val(list.as_slice())
+        + std::mem::size_of_val(rank.as_slice())
+        + std::mem::size_of_val(stack.as_slice());
+    let mut renderer = Box::new(PainterRenderer::<Frac, EDGES, POLY>::new());
+    let (w, h) = (spec.width, spec.height);
+    let mut target = PackedFrame::new(w, h);
+    let mut probe = Collect::new(w, h);
+    let start = Instant::now();
+    let mut result = None;
+    measured_region(&mut || {
+        let order = match tree {
+            Some(t) => {
+                if let Err(e) = t.rank_front_to_back(&camera.viewpoint(), &mut stack, &mut rank) {
+                    result = Some(Err(e.widen()));
+                    return;
+                }
+                PaintOrder::Order(DepthOrder {
+                    surfaces: t.fragments(),
+                    source: t.source(),
+                    rank: &rank,
+                })
+            }
+            None => PaintOrder::FarthestDepth,
+        };
+        result = Some(renderer.render(
+            mesh,
+            &adjacency,
+            &camera,
+            &settings,
+            &mut ws,
+            order,
+            &mut list,
+            &MonoPalette::default(),
+            &mut target,
+            &mut probe,
+        ));
+    });
+    let stats = result
+        .expect("the measured region ran")
+        .map_err(|e| format!("render: {e}"))?;
+    let time_us = start.elapsed().as_micros() as u64;
+    let working = lent + std::mem::size_of::<PainterRenderer<Frac, EDGES, POLY>>();
+    Ok(frame(
+        w,
+        h,
+        probe,
+        target,
+        &stats,
+        working,
+        build_bytes,
+        time_us,
+    ))
+}
