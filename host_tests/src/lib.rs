@@ -11,6 +11,7 @@ pub mod image;
 pub mod metrics;
 pub mod obj;
 pub mod orbit;
+pub mod pick;
 pub mod pipeline;
 pub mod random;
 pub mod reference;

@@ -422,7 +422,7 @@ fn hidden<const POLY: usize>(
 /// of sampling at pixel centres: the rounding of fixed-point depth, plus `reach`
 /// sixteenths of the plane's depth change over one pixel. This also keeps an edge
 /// that lies in another face's plane visible: equal depth does not hide.
-fn nearer(plane: &DepthPlane, px: &EdgePixel, reach: u64) -> bool {
+pub(crate) fn nearer(plane: &DepthPlane, px: &EdgePixel, reach: u64) -> bool {
     let slope = (u64::from(plane.change_per_pixel()) * reach) >> 4;
     let eps = (px.q >> 16).max(1 << 8) + slope.min(1 << 31) as u32;
     plane.at(px.px, px.py) > px.q.saturating_add(eps)
@@ -433,7 +433,7 @@ fn nearer(plane: &DepthPlane, px: &EdgePixel, reach: u64) -> bool {
 /// uncertain. A face extended to the point: a grazing face beside a silhouette,
 /// extended, passes just in front of its edge. Both were chosen against the f64
 /// reference (`host_tests/tests/pipeline_vs_reference.rs`).
-const REACH_COVERING: u64 = 1;
+pub(crate) const REACH_COVERING: u64 = 1;
 const REACH_EXTENDED: u64 = 32;
 
 /// True when face `f` has a vertex at the position of one of `edge`'s ends.
