@@ -3,6 +3,7 @@
 //! ```text
 //! cargo run --release -p host_tests --bin report            # full run, writes report/
 //! cargo run --release -p host_tests --bin report -- --quick # smoke test, writes target/report-quick/
+//! cargo run --release -p host_tests --bin report -- engines # every engine, writes report/engines.md
 //! options: --jobs N (callgrind jobs at a time, default 2), --no-counts, --out DIR
 //! ```
 //!
@@ -27,6 +28,7 @@ use host_tests::report::{child, depth, plot, Config, SIZES};
 
 struct Args {
     quick: bool,
+    engines: bool,
     counts: bool,
     jobs: usize,
     out: PathBuf,
@@ -35,6 +37,7 @@ struct Args {
 fn parse() -> Result<Args, String> {
     let mut a = Args {
         quick: false,
+        engines: false,
         counts: true,
         jobs: 2,
         out: PathBuf::new(),
@@ -44,6 +47,7 @@ fn parse() -> Result<Args, String> {
     while let Some(arg) = it.next() {
         match arg.as_str() {
             "--quick" => a.quick = true,
+            "engines" => a.engines = true,
             "--no-counts" => a.counts = false,
             "--jobs" => {
                 a.jobs = it
@@ -86,6 +90,9 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     };
+    if args.engines {
+        return engines_report(&args);
+    }
     let t = Instant::now();
     let mut res = Results::default();
     errors_pass(args.quick, &mut res);
@@ -240,4 +247,60 @@ fn document(
         }
     }
     (s, held, total)
+}
+
+/// `report -- engines`: every engine on every scene, `engines.md`.
+fn engines_report(args: &Args) -> ExitCode {
+    use host_tests::frame::EngineSpec;
+    use host_tests::report::engines;
+    let t = Instant::now();
+    let size = if args.quick { (128, 64) } else { (400, 240) };
+    let (mut rows, skipped) =
+        engines::errors_pass(&engines::scene_names(args.quick), size, &EngineSpec::ALL);
+    let counts = if args.counts {
+        eprintln!("report: {} frames under callgrind", rows.len());
+        engines::counts_pass(&mut rows, args.jobs)
+    } else {
+        Err("not measured (--no-counts)".into())
+    };
+    let command = format!(
+        "cargo run --release -p host_tests --bin report -- engines{}",
+        if args.quick { " --quick" } else { "" }
+    );
+    let md = engines::markdown(
+        &rows,
+        &skipped,
+        &command,
+        t.elapsed().as_secs_f64(),
+        &counts,
+    );
+    if let Err(e) = std::fs::create_dir_all(&args.out) {
+        eprintln!("report: cannot create {}: {e}", args.out.display());
+        return ExitCode::FAILURE;
+    }
+    let path = args.out.join("engines.md");
+    if let Err(e) = std::fs::write(&path, md) {
+        eprintln!("report: cannot write {}: {e}", path.display());
+        return ExitCode::FAILURE;
+    }
+    let unexpected: Vec<String> = rows
+        .iter()
+        .filter(|r| r.breaks() && engines::expected_failure(r.engine, &r.scene).is_none())
+        .map(|r| format!("{} on {}", r.engine.name(), r.scene))
+        .collect();
+    println!(
+        "report: wrote {} in {:.0} s; unexpected failures: {}",
+        path.display(),
+        t.elapsed().as_secs_f64(),
+        if unexpected.is_empty() {
+            "none".into()
+        } else {
+            unexpected.join(", ")
+        }
+    );
+    if unexpected.is_empty() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    }
 }

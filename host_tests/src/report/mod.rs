@@ -8,6 +8,7 @@
 //! ([`write`]) and `report/speed-vs-error.svg` ([`plot`]).
 
 pub mod depth;
+pub mod engines;
 pub mod errors;
 pub mod plot;
 pub mod run;
@@ -249,6 +250,9 @@ pub fn job_key(scene: &str, (w, h): (usize, usize), c: &Config) -> String {
 /// Runs child job `key` (inside callgrind): renders the frame; returns the pixels
 /// set (printed as `pixels=N` for the harness).
 pub fn child(key: &str) -> Result<usize, String> {
+    if key.starts_with("engines|") {
+        return engines::child(key);
+    }
     let mut parts = key.split('|');
     let (Some(scene), Some(size), Some(config)) = (parts.next(), parts.next(), parts.next()) else {
         return Err(format!("bad job key {key:?}"));

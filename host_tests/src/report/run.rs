@@ -291,7 +291,7 @@ pub fn counts_pass(res: &mut Results, jobs: usize) {
     res.seconds_counts = t.elapsed().as_secs_f64();
 }
 
-fn run_jobs(exe: &Path, dir: &Path, keys: &[String], jobs: usize) -> Vec<Result<u64, String>> {
+pub fn run_jobs(exe: &Path, dir: &Path, keys: &[String], jobs: usize) -> Vec<Result<u64, String>> {
     let next = AtomicUsize::new(0);
     let results: Mutex<Vec<Option<Result<u64, String>>>> =
         Mutex::new((0..keys.len()).map(|_| None).collect());

@@ -1,0 +1,46 @@
+//! Every engine on the quick scenes of `report -- engines`, against the f64
+//! reference: no engine breaks (far id differences, holes, wrong faces, depth-order
+//! errors) where it is meant to work, and the painter's documented failure on cyclic
+//! overlap is real. `cargo test --release -p host_tests --test engines_table --
+//! --nocapture` prints the table.
+
+use host_tests::frame::EngineSpec;
+use host_tests::report::engines::{errors_pass, expected_failure, markdown, QUICK_SCENES};
+
+#[test]
+fn every_engine_matches_the_reference_where_it_is_meant_to_work() {
+    let (rows, skipped) = errors_pass(&QUICK_SCENES, (128, 64), &EngineSpec::ALL);
+    println!(
+        "{}",
+        markdown(
+            &rows,
+            &skipped,
+            "engines_table",
+            0.0,
+            &Err("not measured".into())
+        )
+    );
+    assert!(
+        rows.len() >= 3 * EngineSpec::ALL.len(),
+        "too few rows: {}",
+        rows.len()
+    );
+    let unexpected: Vec<String> = rows
+        .iter()
+        .filter(|r| r.breaks() && expected_failure(r.engine, &r.scene).is_none())
+        .map(|r| format!("{} on {}: {:?}", r.engine.name(), r.scene, r.errors))
+        .collect();
+    assert!(
+        unexpected.is_empty(),
+        "unexpected failures:\n{}",
+        unexpected.join("\n")
+    );
+    let painter_cyclic = rows
+        .iter()
+        .find(|r| r.engine == EngineSpec::Painter && r.scene == "cyclic")
+        .expect("painter on cyclic");
+    assert!(
+        painter_cyclic.breaks(),
+        "the painter's sort cannot order cyclic overlap, yet it matched the reference"
+    );
+}
