@@ -317,3 +317,43 @@ fn code_fill_in_depth_order_is_as_faithful_as_the_z_buffer_on_random_scenes() {
         failures.join("\n")
     );
 }
+
+/// The BSP order painted far to near (`bsp`) and the same order as weight-1 codes
+/// (`codefill`): the nearest fragment at a pixel is the last painted and the lowest
+/// set code bit alike, so the frames are identical.
+#[test]
+fn painting_a_bsp_order_draws_the_code_fill_frame_on_random_scenes() {
+    let mut failures = Vec::new();
+    let mut rendered = 0;
+    for (k, sc) in scenes().iter().enumerate() {
+        let c = render_frame(
+            &sc.mesh,
+            &sc.cam,
+            &with_engine(&sc.spec, EngineSpec::CodeFill),
+        );
+        let b = render_frame(&sc.mesh, &sc.cam, &with_engine(&sc.spec, EngineSpec::Bsp));
+        match (c, b) {
+            (Ok(c), Ok(b)) => {
+                rendered += 1;
+                let d = differing(&c, &b);
+                if d != (0, 0, 0) {
+                    failures.push(format!("scene {k}: {d:?} (ids, line pixels, bytes) differ"));
+                }
+            }
+            (Err(a), Err(b)) if a == b => {}
+            (c, b) => failures.push(format!(
+                "scene {k}: the engines disagree on failing: {:?} / {:?}",
+                c.err(),
+                b.err()
+            )),
+        }
+    }
+    println!("{rendered} scenes");
+    assert!(rendered >= 290, "only {rendered} scenes rendered");
+    assert!(
+        failures.is_empty(),
+        "{} failures:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
