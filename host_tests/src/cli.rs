@@ -41,6 +41,9 @@ outputs
   --lines FILE.pgm     P5 8-bit: 0 none, 1 visible edge, 2 hidden edge
   --stats              print `name: value` figures (default when no other output is asked for)
   --hash               print `hash: HEX`, FNV-1a 64 of the packed 1-bpp frame
+  --pick X,Y           print what is under pixel (X, Y): `pick_face: F` (0-based, or none) and
+                       one `pick_edge: A B in_front K` per feature edge drawn through it
+                       (vertex indices A B, K = faces in front of it there, 0 = visible)
 exit status: 0 ok, 2 bad input (file, OBJ, flag or value), 1 rendering failed";
 
 /// Largest frame side accepted.
@@ -96,6 +99,8 @@ pub struct Options {
     pub lines: Option<PathBuf>,
     pub stats: bool,
     pub hash: bool,
+    /// `--pick X,Y`: the pixel to pick.
+    pub pick: Option<(u16, u16)>,
     pub help: bool,
 }
 
@@ -119,6 +124,7 @@ impl Default for Options {
             lines: None,
             stats: false,
             hash: false,
+            pick: None,
             help: false,
         }
     }
@@ -162,7 +168,7 @@ fn size(s: &str) -> Result<(usize, usize), String> {
 }
 
 /// Flags that take a value.
-const VALUED: [&str; 21] = [
+const VALUED: [&str; 22] = [
     "--size",
     "--eye",
     "--target",
@@ -184,6 +190,7 @@ const VALUED: [&str; 21] = [
     "--lines",
     "--look",
     "--scale",
+    "--pick",
 ];
 
 /// Parses the arguments (without the program name).
@@ -332,6 +339,13 @@ where
                 }
             }
             "--scale" => o.scale = int_in(flag, &v, 1, 16)?,
+            "--pick" => {
+                let (x, y) = v
+                    .split_once(',')
+                    .and_then(|(x, y)| Some((x.trim().parse().ok()?, y.trim().parse().ok()?)))
+                    .ok_or_else(|| format!("--pick: `{v}` is not X,Y (two pixel indices)"))?;
+                o.pick = Some((x, y));
+            }
             _ => unreachable!("every valued flag is handled"),
         }
     }
@@ -348,6 +362,14 @@ where
         }
         Some(b) => o.spec.band = b,
         None => o.spec.band = o.spec.height,
+    }
+    if let Some((x, y)) = o.pick {
+        if usize::from(x) >= o.spec.width || usize::from(y) >= o.spec.height {
+            return Err(format!(
+                "--pick: pixel ({x}, {y}) is outside the {}x{} frame",
+                o.spec.width, o.spec.height
+            ));
+        }
     }
     if let Some(out) = &o.out {
         let ext = out.extension().and_then(|e| e.to_str()).unwrap_or("");
@@ -558,6 +580,8 @@ mod tests {
             (&["--band", "0"], "--band"),
             (&["--band", "300"], "--band"),
             (&["--scale", "0"], "--scale"),
+            (&["--pick", "400,0"], "--pick"),
+            (&["--pick", "3"], "--pick"),
             (&["--look", "crt"], "--look"),
             (&["--pattern", "zigzag"], "--pattern"),
             (&["--out", "a.jpg"], "--out"),

@@ -1,6 +1,5 @@
 //! `pbuffer::render::pick` on the host: what is under chosen pixels.
 
-use fixed::types::extra::U4;
 use pbuffer::mesh::Mesh;
 use pbuffer::render::{pick, Pick, PickWorkspace, PickedEdge, ProjectedVertex};
 use pbuffer::Viewport;
@@ -15,11 +14,37 @@ pub struct Picked {
     pub y: u16,
     pub pick: Pick,
     pub edges: Vec<(PickedEdge, [[f32; 3]; 2])>,
+    /// The 0-based vertex indices of each edge's ends (its lowest welded ones).
+    pub ends: Vec<[u32; 2]>,
 }
 
-/// Picks every pixel of `pixels` at S = 4 (the only sub-pixel setting picking is
-/// offered at on the host).
+/// Picks every pixel of `pixels` at the spec's sub-pixel bits.
 pub fn pick_pixels(
+    data: &MeshData,
+    cam: &CameraSpec,
+    spec: &RenderSpec,
+    pixels: &[(u16, u16)],
+) -> Result<Vec<Picked>, String> {
+    use fixed::types::extra::*;
+    match spec.subpixel {
+        0 => pick_s::<U0>(data, cam, spec, pixels),
+        1 => pick_s::<U1>(data, cam, spec, pixels),
+        2 => pick_s::<U2>(data, cam, spec, pixels),
+        3 => pick_s::<U3>(data, cam, spec, pixels),
+        4 => pick_s::<U4>(data, cam, spec, pixels),
+        5 => pick_s::<U5>(data, cam, spec, pixels),
+        6 => pick_s::<U6>(data, cam, spec, pixels),
+        7 => pick_s::<U7>(data, cam, spec, pixels),
+        8 => pick_s::<U8>(data, cam, spec, pixels),
+        9 => pick_s::<U9>(data, cam, spec, pixels),
+        10 => pick_s::<U10>(data, cam, spec, pixels),
+        11 => pick_s::<U11>(data, cam, spec, pixels),
+        12 => pick_s::<U12>(data, cam, spec, pixels),
+        s => Err(format!("--subpixel {s}: must be 0 to 12")),
+    }
+}
+
+fn pick_s<Frac: fixed::types::extra::LeEqU32>(
     data: &MeshData,
     cam: &CameraSpec,
     spec: &RenderSpec,
@@ -45,7 +70,7 @@ pub fn pick_pixels(
             drawn: &mut drawn,
             features: &mut features,
         };
-        let p = pick::<U4, POLY>(
+        let p = pick::<Frac, POLY>(
             &mesh,
             &adjacency,
             &camera,
@@ -56,6 +81,13 @@ pub fn pick_pixels(
             &mut out,
         )
         .map_err(|e| format!("pick ({x}, {y}): {e}"))?;
+        let ends = out[..p.edges]
+            .iter()
+            .map(|pe| {
+                let e = adjacency.edges()[pe.edge as usize];
+                [e.a, e.b]
+            })
+            .collect();
         let edges = out[..p.edges]
             .iter()
             .map(|pe| {
@@ -71,6 +103,7 @@ pub fn pick_pixels(
             y,
             pick: p,
             edges,
+            ends,
         });
     }
     Ok(result)

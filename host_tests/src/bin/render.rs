@@ -169,7 +169,22 @@ fn run() -> Result<(), Fail> {
     if o.hash {
         text += &format!("hash: {:016x}\n", fnv1a64(&frame.packed));
     }
-    let asked_other = o.hash || o.out.is_some() || o.ids.is_some() || o.lines.is_some();
+    if let Some((x, y)) = o.pick {
+        let picked = host_tests::pick::pick_pixels(&mesh, &camera, &o.spec, &[(x, y)])
+            .map_err(|e| bad(format!("{scene_name}: {e}")))?;
+        for p in &picked {
+            text += &format!("pick: {},{}\n", p.x, p.y);
+            match p.pick.face {
+                Some(f) => text += &format!("pick_face: {f}\n"),
+                None => text += "pick_face: none\n",
+            }
+            for ((pe, _), [a, b]) in p.edges.iter().zip(&p.ends) {
+                text += &format!("pick_edge: {a} {b} in_front {}\n", pe.faces_in_front);
+            }
+        }
+    }
+    let asked_other =
+        o.hash || o.out.is_some() || o.ids.is_some() || o.lines.is_some() || o.pick.is_some();
     if o.stats || !asked_other {
         text += &format!("scene: {scene_name}\n");
         text += &format!("size: {w}x{h}\n");
