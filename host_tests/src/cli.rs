@@ -15,7 +15,9 @@ use crate::frame::{
 pub const USAGE: &str = "\
 usage: render [SCENE.obj] [flags]
   SCENE.obj            Wavefront OBJ (v and f lines); without it: ../shared/models/suzanne.obj
-                       (or a built-in cube), written to docs/render.png, stats printed
+                       (or a built-in cube), written to docs/render.png, stats printed;
+                       scene:NAME renders a procedural test scene (cube, boxes, icosphere,
+                       torus, gear, frame, cyclic, coplanar)
 camera (default: --fit)
   --fit                frame the whole model from the front-right, above (perspective 30 deg)
   --eye X,Y,Z          eye position (excludes --fit); --target X,Y,Z (0,0,0); --up X,Y,Z (0,1,0)

@@ -202,6 +202,20 @@ pub fn builtin_cube() -> MeshData {
 pub fn load_scene(path: Option<&Path>) -> Result<(MeshData, String), String> {
     let default_model = workspace_root().join("../shared/models/suzanne.obj");
     match path {
+        Some(p) if p.to_string_lossy().starts_with("scene:") => {
+            let name = p.to_string_lossy()["scene:".len()..].to_string();
+            let names: Vec<&str> = crate::shapes::all_scenes().iter().map(|s| s.name).collect();
+            crate::shapes::all_scenes()
+                .into_iter()
+                .find(|s| s.name == name)
+                .map(|s| (s.mesh, format!("scene:{name}")))
+                .ok_or_else(|| {
+                    format!(
+                        "scene:{name}: no such procedural scene (have {})",
+                        names.join(", ")
+                    )
+                })
+        }
         Some(p) => Ok((load_obj(p)?, p.display().to_string())),
         None if default_model.exists() => Ok((
             load_obj(&default_model)?,
