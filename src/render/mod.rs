@@ -16,6 +16,7 @@ mod idpass;
 mod lines;
 mod painter;
 mod transform;
+mod warnock;
 mod zband;
 mod zbuffer;
 
@@ -27,6 +28,7 @@ pub use compose::{FrameProbe, MonoPalette, Palette, SolidPalette};
 pub use idpass::IdWorkspace;
 pub use painter::{PaintOrder, PainterRenderer};
 pub use transform::{ClipVertex, ProjectedVertex, ScreenVertex};
+pub use warnock::{WarnockArea, WarnockFace, WarnockRenderer, WarnockSizes, WarnockStorage};
 pub use zband::Depth;
 pub use zbuffer::ZBufferRenderer;
 
