@@ -192,7 +192,10 @@ mod tests {
     use super::*;
 
     fn poly(points: &[(i32, i32)]) -> std::vec::Vec<ScreenVertex> {
-        points.iter().map(|&(x, y)| ScreenVertex { x, y, q: 0 }).collect()
+        points
+            .iter()
+            .map(|&(x, y)| ScreenVertex { x, y, q: 0 })
+            .collect()
     }
 
     extern crate std;

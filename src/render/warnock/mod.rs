@@ -507,7 +507,8 @@ impl<const POLY: usize> Areas<'_, '_, '_, POLY> {
             for x in rect.x0..rect.x1 {
                 let covered = covers_centre(&self.poly, s, i64::from(x), i64::from(y));
                 if covered {
-                    if let Some(slot) = self.band.index(x, y).and_then(|k| self.band.ids.get_mut(k)) {
+                    if let Some(slot) = self.band.index(x, y).and_then(|k| self.band.ids.get_mut(k))
+                    {
                         *slot = id;
                     }
                     self.runs += u32::from(!run);

@@ -271,7 +271,10 @@ fn too_little_storage_is_an_error_naming_the_size_needed() {
     );
     // 96 px wide: 7 levels, 22 stack entries, 2 x 9 list entries.
     assert_eq!((enough.areas, enough.lists), (22, 18));
-    let areas = Lend { areas: 21, ..enough };
+    let areas = Lend {
+        areas: 21,
+        ..enough
+    };
     assert_eq!(
         warnock(&mesh, eye, H, areas),
         Err(Error::CapacityExceeded {
@@ -290,7 +293,10 @@ fn too_little_storage_is_an_error_naming_the_size_needed() {
     // 8-row bands: 10 rows held, still 7 levels for the width.
     let band = Lend::enough(2, 8);
     assert_eq!((band.areas, band.lists), (22, 18));
-    assert_eq!(warnock(&mesh, eye, 8, band).unwrap(), zbuffer(&mesh, eye, 8));
+    assert_eq!(
+        warnock(&mesh, eye, 8, band).unwrap(),
+        zbuffer(&mesh, eye, 8)
+    );
 }
 
 #[test]
@@ -338,7 +344,11 @@ fn an_icosahedron_from_many_sides_is_the_z_buffer_frame() {
     // Culling off: back faces overlap front ones everywhere.
     for k in 0..12 {
         let a = k as f32 * 0.7;
-        let eye = [4.0 * libm_sin(a), 1.5 - 0.25 * k as f32, 4.0 * libm_sin(a + 1.570_796)];
+        let eye = [
+            4.0 * libm_sin(a),
+            1.5 - 0.25 * k as f32,
+            4.0 * libm_sin(a + 1.570_796),
+        ];
         for band in [H, 5] {
             let ids = warnock(&mesh, eye, band, Lend::enough(20, band)).unwrap();
             assert_eq!(ids, zbuffer(&mesh, eye, band), "view {k}, band {band}");
