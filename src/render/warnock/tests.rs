@@ -347,7 +347,7 @@ fn an_icosahedron_from_many_sides_is_the_z_buffer_frame() {
         let eye = [
             4.0 * libm_sin(a),
             1.5 - 0.25 * k as f32,
-            4.0 * libm_sin(a + 1.570_796),
+            4.0 * libm_sin(a + core::f32::consts::FRAC_PI_2),
         ];
         for band in [H, 5] {
             let ids = warnock(&mesh, eye, band, Lend::enough(20, band)).unwrap();
