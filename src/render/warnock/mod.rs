@@ -5,12 +5,14 @@
 //!
 //! Per frame, every drawn face in view is clipped and projected once, and its depth
 //! plane, tie, pixel box and convexity are kept in lent storage ([`WarnockFace`]);
-//! the clipped polygon itself is not kept but rebuilt from the vertex cache when a
-//! coverage test needs it (a copy of its few screen vertices unless the face
-//! crosses a clipping plane). Measured on suzanne at 400x240: rebuilding costs
-//! about as much as reading a cached polygon would, and keeping the polygons would
-//! lend `faces x POLY` screen vertices more, so they are rebuilt; the plane (two
-//! divisions) is cached because every decision needs it.
+//! the plane (two divisions) because every decision needs it. The clipped polygon
+//! is kept inline when it has at most four vertices (most faces: 48 bytes a face);
+//! a larger one is rebuilt from the vertex cache when a coverage test needs it
+//! (keeping every polygon would lend `faces x POLY` screen vertices). Measured by
+//! callgrind on suzanne at 400x240 (500 quads, one band): rebuilding every polygon
+//! from the vertex cache took 61.5 M instructions a frame, the inline polygons
+//! (and keeping the last one built) 48.8 M, for 24 kB more lent storage; the
+//! Z-buffer takes 11.0 M.
 //!
 //! An area popped from the stack holds the candidates of its parent: those whose
 //! pixel box meets it, and, for a convex candidate, those not wholly outside one of
@@ -70,6 +72,10 @@ pub struct WarnockFace {
     /// +1 or -1 for a convex polygon, 0 otherwise.
     sense: i8,
     pixels: PixelBox,
+    /// The clipped polygon when it has at most 4 vertices (`small_len` of them),
+    /// else `small_len` is 0 and it is rebuilt when needed.
+    small: [ScreenVertex; 4],
+    small_len: u8,
 }
 
 /// One entry of the explicit stack: an area still to visit and the candidate list
@@ -222,8 +228,19 @@ impl<const POLY: usize> IdPass for Subdivide<'_, POLY> {
             let Some(plane) = DepthPlane::new(&poly, ctx.s) else {
                 continue;
             };
+            let mut small = [ScreenVertex::default(); 4];
+            let small_len = if poly.len() <= small.len() {
+                for (to, from) in small.iter_mut().zip(poly.iter()) {
+                    *to = *from;
+                }
+                poly.len() as u8
+            } else {
+                0
+            };
             if let Some(slot) = self.storage.faces.get_mut(count) {
                 *slot = WarnockFace {
+                    small,
+                    small_len,
                     plane,
                     tie: plane.tie(),
                     // Below MAX_FACES = 65 535.
@@ -282,6 +299,7 @@ impl<const POLY: usize> IdPass for Subdivide<'_, POLY> {
             faces,
             band,
             poly: Vec::new(),
+            poly_of: None,
             runs: 0,
         };
         let mut top = 0usize;
@@ -353,25 +371,39 @@ struct Areas<'a, 'b, 's, const POLY: usize> {
     faces: &'a [WarnockFace],
     band: &'b mut IdBand<'s>,
     poly: Vec<ScreenVertex, POLY>,
+    /// The face whose polygon `poly` holds.
+    poly_of: Option<u16>,
     runs: u32,
 }
 
-impl<const POLY: usize> Areas<'_, '_, '_, POLY> {
-    fn face(&self, slot: u16) -> WarnockFace {
-        self.faces
-            .get(usize::from(slot))
-            .copied()
-            .unwrap_or_default()
+impl<'a, const POLY: usize> Areas<'a, '_, '_, POLY> {
+    fn face(&self, slot: u16) -> Option<&'a WarnockFace> {
+        self.faces.get(usize::from(slot))
     }
 
-    /// Rebuilds the clipped polygon of `face` into `self.poly`.
+    /// Puts the clipped polygon of `face` in `self.poly`: kept, copied from the
+    /// face's small polygon, or rebuilt from the vertex cache.
     fn polygon(&mut self, face: &WarnockFace) -> Result<bool, Error> {
-        face_polygon(
+        if self.poly_of == Some(face.face) {
+            return Ok(true);
+        }
+        self.poly_of = None;
+        let n = usize::from(face.small_len);
+        if let Some(small) = face.small.get(..n).filter(|_| n > 0) {
+            self.poly.clear();
+            for v in small {
+                let _ = self.poly.push(*v);
+            }
+        } else if !face_polygon(
             self.ctx,
             self.vertices,
             usize::from(face.face),
             &mut self.poly,
-        )
+        )? {
+            return Ok(false);
+        }
+        self.poly_of = Some(face.face);
+        Ok(true)
     }
 
     /// Whether the face in `slot` may cover a centre of the area.
@@ -381,11 +413,13 @@ impl<const POLY: usize> Areas<'_, '_, '_, POLY> {
         rect: &Rect,
         corners: &[(i64, i64); 4],
     ) -> Result<bool, Error> {
-        let face = self.face(slot);
+        let Some(face) = self.face(slot) else {
+            return Ok(false);
+        };
         if !face.pixels.meets(rect) {
             return Ok(false);
         }
-        if face.sense == 0 || !self.polygon(&face)? {
+        if face.sense == 0 || !self.polygon(face)? {
             return Ok(true);
         }
         Ok(!outside_an_edge(&self.poly, face.sense, corners))
@@ -422,22 +456,26 @@ impl<const POLY: usize> Areas<'_, '_, '_, POLY> {
         match list {
             [] => return Ok(true),
             [only] => {
-                let face = self.face(*only);
-                if self.surrounds(&face, rect)? {
+                let Some(face) = self.face(*only) else {
+                    return Ok(true);
+                };
+                if self.surrounds(face, rect)? {
                     self.fill(rect, face.face);
                 } else {
-                    self.fill_covered(&face, rect)?;
+                    self.fill_covered(face, rect)?;
                 }
                 return Ok(true);
             }
             _ => {}
         }
         for (k, &slot) in list.iter().enumerate() {
-            let face = self.face(slot);
-            if !self.surrounds(&face, rect)? {
+            let Some(face) = self.face(slot) else {
+                continue;
+            };
+            if !self.surrounds(face, rect)? {
                 continue;
             }
-            let (nearest, _) = range(&face);
+            let (nearest, _) = range(face);
             // Z-buffer order: an earlier face loses to this one where this one is
             // nearer by more than this one's tie; a later one never wins where it
             // is not nearer by more than its own tie.
@@ -445,8 +483,10 @@ impl<const POLY: usize> Areas<'_, '_, '_, POLY> {
                 if m == k {
                     return true;
                 }
-                let other = self.face(other);
-                let (_, farthest) = range(&other);
+                let Some(other) = self.face(other) else {
+                    return true;
+                };
+                let (_, farthest) = range(other);
                 if m < k {
                     nearest > farthest.saturating_add(face.tie)
                 } else {
@@ -466,8 +506,10 @@ impl<const POLY: usize> Areas<'_, '_, '_, POLY> {
         let [(x, y), ..] = *corners;
         let mut best: Option<(u16, u32)> = None;
         for &slot in list {
-            let face = self.face(slot);
-            if !self.polygon(&face)? || !covers_centre(&self.poly, self.ctx.s, i, j) {
+            let Some(face) = self.face(slot) else {
+                continue;
+            };
+            if !self.polygon(face)? || !covers_centre(&self.poly, self.ctx.s, i, j) {
                 continue;
             }
             let q = face.plane.at(x, y);
