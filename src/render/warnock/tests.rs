@@ -208,12 +208,28 @@ fn the_nearer_of_two_overlapping_squares_shows() {
 fn coplanar_faces_tie_to_the_lower_index() {
     let (v, idx, off) = quads(&[([-1.0, -1.0, 0.5, 0.5], 0.0), ([-0.5, -0.5, 1.0, 1.0], 0.0)]);
     let mesh = Mesh::new(&v, &idx, &off).unwrap();
-    let eye = [0.3, 0.2, 6.0];
+    // Head on, both faces have the same nearness everywhere: the overlap must show
+    // face 0 at every pixel, also where face 0's edges cross face 1 (decided pixel
+    // by pixel, as no face wins a whole area there).
+    for eye in [[0.0, 0.0, 6.0], [0.3, 0.2, 6.0]] {
+        let ids = warnock(&mesh, eye, H, Lend::enough(2, H)).unwrap();
+        assert_eq!(ids, zbuffer(&mesh, eye, H), "{}", ascii(&ids));
+        // The overlap shows face 0: its centre pixel.
+        let centre = ids[32 * W + 48];
+        assert_eq!(centre, 1, "{}", ascii(&ids));
+    }
+    // Two coplanar dents (concave quads), head on: neither ever covers a whole area,
+    // so every pixel of the overlap is decided alone, by the tie rule.
+    let dart = |dx: f32, dy: f32| {
+        [[-1.5, -1.0], [0.0, -0.3], [1.5, -1.0], [0.0, 1.2]].map(|[x, y]| [x + dx, y + dy, 0.0])
+    };
+    let v: Vec<[f32; 3]> = dart(0.0, 0.0).into_iter().chain(dart(0.4, 0.3)).collect();
+    let (idx, off): (Vec<u32>, Vec<u32>) = ((0..8).collect(), vec![0, 4, 8]);
+    let mesh = Mesh::new(&v, &idx, &off).unwrap();
+    let eye = [0.0, 0.0, 6.0];
     let ids = warnock(&mesh, eye, H, Lend::enough(2, H)).unwrap();
-    assert_eq!(ids, zbuffer(&mesh, eye, H));
-    // The overlap shows face 0: its centre pixel.
-    let centre = ids[32 * W + 48];
-    assert_eq!(centre, 1, "{}", ascii(&ids));
+    assert_eq!(ids, zbuffer(&mesh, eye, H), "{}", ascii(&ids));
+    assert_eq!(ids[32 * W + 48], 1, "{}", ascii(&ids));
 }
 
 #[test]
@@ -247,11 +263,21 @@ fn a_dented_face_over_the_corners_is_not_taken_as_covering_the_area() {
     ];
     let idx = vec![0, 1, 2, 3, 4, 5, 6, 7];
     let off = vec![0, 4, 8];
-    let mesh = Mesh::new(&v, &idx, &off).unwrap();
-    for eye in [[0.0, 0.0, 6.0], [0.4, -0.3, 5.0]] {
-        let ids = warnock(&mesh, eye, H, Lend::enough(2, H)).unwrap();
-        assert_eq!(ids, zbuffer(&mesh, eye, H), "{}", ascii(&ids));
-        assert!(ids.contains(&1) && ids.contains(&2));
+    // The same arrow head so large that it covers the frame's corners: the whole
+    // frame is an area whose corner centres it covers.
+    let mut large = v.clone();
+    for p in &mut large[4..] {
+        p[0] *= 10.0;
+        p[1] *= 10.0;
+    }
+    large[5] = [0.0, -0.1, 0.5];
+    for v in [&v, &large] {
+        let mesh = Mesh::new(v, &idx, &off).unwrap();
+        for eye in [[0.0, 0.0, 6.0], [0.4, -0.3, 5.0]] {
+            let ids = warnock(&mesh, eye, H, Lend::enough(2, H)).unwrap();
+            assert_eq!(ids, zbuffer(&mesh, eye, H), "{}", ascii(&ids));
+            assert!(ids.contains(&1) && ids.contains(&2), "{}", ascii(&ids));
+        }
     }
 }
 
