@@ -6,7 +6,10 @@ use std::time::Instant;
 
 use fixed::types::extra::LeEqU32;
 use pbuffer::mesh::Mesh;
-use pbuffer::render::{IdWorkspace, PaintOrder, PainterRenderer, ProjectedVertex};
+use pbuffer::render::{
+    IdWorkspace, PaintOrder, PainterRenderer, ProjectedVertex, WarnockArea, WarnockFace,
+    WarnockRenderer, WarnockSizes, WarnockStorage,
+};
 use pbuffer::{DepthOrder, MonoPalette};
 
 use crate::bsp::with_bsp;
@@ -143,6 +146,79 @@ fn paint_with<Frac: LeEqU32>(
         .map_err(|e| format!("render: {e}"))?;
     let time_us = start.elapsed().as_micros() as u64;
     let working = lent + std::mem::size_of::<PainterRenderer<Frac, EDGES, POLY>>();
+    Ok(frame(
+        w,
+        h,
+        probe,
+        target,
+        &stats,
+        working,
+        build_bytes,
+        time_us,
+    ))
+}
+
+/// `warnock`: area subdivision, storage lent at the sizes that always suffice.
+pub(crate) fn render_warnock<Frac: LeEqU32>(
+    data: &MeshData,
+    cam: &CameraSpec,
+    spec: &RenderSpec,
+) -> Result<Frame, String> {
+    let arrays = MeshArrays::new(data);
+    let mesh = Mesh::new(&arrays.vertices, &arrays.indices, &arrays.offsets)
+        .map_err(|e| format!("mesh: {e}"))?;
+    let mut storage = AdjacencyStorage::new(&arrays);
+    let build_bytes = storage.build_bytes();
+    let adjacency = storage.build(&mesh, spec.crease_deg)?;
+    let camera = camera(cam)?;
+    let settings = settings(spec)?;
+    let mut buffers = IdBuffers::new(
+        spec,
+        mesh.vertices().len(),
+        mesh.face_count(),
+        adjacency.edges().len(),
+    );
+    let (w, h) = (spec.width, spec.height);
+    let band = spec.band.clamp(1, h.max(1));
+    let sizes = WarnockSizes::for_frame(mesh.face_count(), w as u16, h as u16, band as u16);
+    let mut areas = vec![WarnockArea::default(); sizes.areas];
+    let mut lists = vec![0u16; sizes.lists];
+    let mut faces = vec![WarnockFace::default(); sizes.faces];
+    let mut ws = buffers.workspace();
+    let lend = WarnockStorage {
+        areas: &mut areas,
+        lists: &mut lists,
+        faces: &mut faces,
+    };
+    let lent = ws.bytes() + lend.bytes() + std::mem::size_of_val(adjacency.edges());
+    let mut renderer = WarnockRenderer::<Frac, POLY>::new();
+    let mut target = PackedFrame::new(w, h);
+    let mut probe = Collect::new(w, h);
+    let start = Instant::now();
+    let mut result = None;
+    measured_region(&mut || {
+        let storage = WarnockStorage {
+            areas: &mut *lend.areas,
+            lists: &mut *lend.lists,
+            faces: &mut *lend.faces,
+        };
+        result = Some(renderer.render(
+            &mesh,
+            &adjacency,
+            &camera,
+            &settings,
+            &mut ws,
+            storage,
+            &MonoPalette::default(),
+            &mut target,
+            &mut probe,
+        ));
+    });
+    let stats = result
+        .expect("the measured region ran")
+        .map_err(|e| format!("render: {e}"))?;
+    let time_us = start.elapsed().as_micros() as u64;
+    let working = lent + std::mem::size_of::<WarnockRenderer<Frac, POLY>>();
     Ok(frame(
         w,
         h,

@@ -5,6 +5,10 @@
 //!   packed picture). It resolves overlapping faces from their planes exactly as the
 //!   Z-buffer receives them (face order, ties to the lower index), so no tolerance
 //!   is owed.
+//! - `warnock` (area subdivision) against the Z-buffer: the same frame, pixel for
+//!   pixel. Areas are filled only where one face provably wins at every centre by
+//!   the Z-buffer's own rule, and single pixels are decided by that rule, so no
+//!   tolerance is owed either.
 //! - `codefill` (a BSP tree's depth order, weight-1 codes) with both row
 //!   representations: the same frame as each other, pixel for pixel. Against the
 //!   Z-buffer its face ids differ where two faces are within a tie of each other
@@ -221,6 +225,56 @@ fn scanline_draws_the_z_buffer_frame_on_random_scenes() {
         }
     }
     println!("{rendered} scenes, {covered} face pixels, widest code {widest} bits");
+    assert!(rendered >= 290, "only {rendered} scenes rendered");
+    assert!(
+        covered > 500_000,
+        "the scenes cover too little: {covered} pixels"
+    );
+    assert!(
+        failures.is_empty(),
+        "{} failures:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
+
+#[test]
+fn warnock_draws_the_z_buffer_frame_on_random_scenes() {
+    let mut failures = Vec::new();
+    let (mut rendered, mut covered) = (0, 0usize);
+    for (k, sc) in scenes().iter().enumerate() {
+        let z = render_frame(
+            &sc.mesh,
+            &sc.cam,
+            &with_engine(&sc.spec, EngineSpec::ZBuffer),
+        );
+        let a = render_frame(
+            &sc.mesh,
+            &sc.cam,
+            &with_engine(&sc.spec, EngineSpec::Warnock),
+        );
+        match (z, a) {
+            (Ok(z), Ok(a)) => {
+                rendered += 1;
+                covered += z.ids.iter().filter(|&&id| id != 0).count();
+                let d = differing(&z, &a);
+                if d != (0, 0, 0) {
+                    let spec = &sc.spec;
+                    failures.push(format!(
+                        "scene {k} ({}x{}, S {}, band {}, {:?}): {} ids, {} line pixels, {} bytes differ",
+                        spec.width, spec.height, spec.subpixel, spec.band, spec.cull, d.0, d.1, d.2
+                    ));
+                }
+            }
+            (Err(a), Err(b)) if a == b => {}
+            (z, a) => failures.push(format!(
+                "scene {k}: the engines disagree on failing: {:?} / {:?}",
+                z.err(),
+                a.err()
+            )),
+        }
+    }
+    println!("{rendered} scenes, {covered} face pixels");
     assert!(rendered >= 290, "only {rendered} scenes rendered");
     assert!(
         covered > 500_000,

@@ -17,6 +17,7 @@ mod lines;
 mod painter;
 mod pick;
 mod transform;
+mod warnock;
 mod zband;
 mod zbuffer;
 
@@ -29,6 +30,7 @@ pub use idpass::IdWorkspace;
 pub use painter::{PaintOrder, PainterRenderer};
 pub use pick::{pick, Pick, PickWorkspace, PickedEdge};
 pub use transform::{ClipVertex, ProjectedVertex, ScreenVertex};
+pub use warnock::{WarnockArea, WarnockFace, WarnockRenderer, WarnockSizes, WarnockStorage};
 pub use zband::Depth;
 pub use zbuffer::ZBufferRenderer;
 

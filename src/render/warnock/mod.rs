@@ -1,0 +1,563 @@
+//! Warnock's area subdivision (notes 002 and 004) with an explicit, bounded stack:
+//! an area of the band is filled at once when nothing or one face decides it, and
+//! split in four (or two) otherwise, down to single pixels, which are decided
+//! exactly as the Z-buffer decides them.
+//!
+//! Per frame, every drawn face in view is clipped and projected once, and its depth
+//! plane, tie, pixel box and convexity are kept in lent storage ([`WarnockFace`]);
+//! the plane (two divisions) because every decision needs it. The clipped polygon
+//! is kept inline when it has at most four vertices (most faces: 48 bytes a face);
+//! a larger one is rebuilt from the vertex cache when a coverage test needs it
+//! (keeping every polygon would lend `faces x POLY` screen vertices). Measured by
+//! callgrind on suzanne at 400x240 (500 quads, one band): rebuilding every polygon
+//! from the vertex cache took 61.5 M instructions a frame, the inline polygons
+//! (and keeping the last one built) 48.8 M, for 24 kB more lent storage; the
+//! Z-buffer takes 11.0 M.
+//!
+//! An area popped from the stack holds the candidates of its parent: those whose
+//! pixel box meets it, and, for a convex candidate, those not wholly outside one of
+//! its edges, stay. Then, with candidates sorted by face index:
+//! - none: the area shows no face (its ids stay 0);
+//! - one: each pixel centre it covers shows it (all of them, without a test, when it
+//!   is convex and covers the four corner centres);
+//! - a convex candidate covering the four corner centres (so every centre between
+//!   them) that is nearer than every other candidate, at every centre of the area,
+//!   by more than the tie the Z-buffer would apply: the area shows it. Depth bounds
+//!   come from the corner centres, where an affine depth, clamped, has its extremes;
+//! - one pixel: the candidates covering its centre are compared in increasing face
+//!   index, a later one winning only when nearer by more than its tie, exactly the
+//!   Z-buffer's rule, so the frame is the Z-buffer's (32-bit depth) pixel for pixel;
+//! - else: the area is split at its middle in x and y (only along a side longer than
+//!   one pixel) and the parts are pushed.
+//!
+//! Storage bounds (see [`WarnockSizes`]): with `L = ceil(log2(max(width, rows)))`
+//! for a band of `rows` held rows, every split at least halves the longer side (a
+//! side of `n` becomes at most `ceil(n / 2)`), so an area at depth `L` is one pixel.
+//! Depth first, the stack holds at most three unvisited siblings at each depth
+//! 1 .. L plus the four children just pushed: `3 L + 1` areas. The candidate lists
+//! live in one lent slice used as a stack: the band's faces first, then one list per
+//! depth on the path being visited (each a subset of the one before), so at most
+//! `faces x (L + 2)` entries.
+
+mod geom;
+#[cfg(test)]
+mod tests;
+
+use core::marker::PhantomData;
+
+use embedded_graphics_core::pixelcolor::PixelColor;
+use fixed::types::extra::LeEqU32;
+use heapless::Vec;
+
+use super::compose::{FrameProbe, Palette};
+use super::coverage::covers_centre;
+use super::idpass::{render_ids, FrameInput, IdPass, IdWorkspace};
+use super::transform::{ProjectedVertex, ScreenVertex};
+use super::zband::{DepthPlane, IdBand};
+use super::{bit, face_polygon, need, FrameCtx, Settings, Stats};
+use crate::camera::Camera;
+use crate::geometry::Subpixel;
+use crate::mesh::{EdgeAdjacency, Mesh};
+use crate::{Error, SpanSink};
+use geom::{convex_orientation, outside_an_edge, PixelBox, Rect};
+
+/// One drawn face in view, as area subdivision asks about it: kept for a frame in
+/// [`WarnockStorage::faces`].
+#[derive(Debug, Clone, Copy, Default)]
+pub struct WarnockFace {
+    plane: DepthPlane,
+    tie: u32,
+    /// The mesh face (0-based; a mesh has at most 65 535 faces).
+    face: u16,
+    /// +1 or -1 for a convex polygon, 0 otherwise.
+    sense: i8,
+    pixels: PixelBox,
+    /// The clipped polygon when it has at most 4 vertices (`small_len` of them),
+    /// else `small_len` is 0 and it is rebuilt when needed.
+    small: [ScreenVertex; 4],
+    small_len: u8,
+}
+
+/// One entry of the explicit stack: an area still to visit and the candidate list
+/// of its parent (a range of [`WarnockStorage::lists`]).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct WarnockArea {
+    rect: Rect,
+    list: u32,
+    len: u32,
+}
+
+/// Storage the caller lends to [`WarnockRenderer::render`], besides the
+/// [`IdWorkspace`]; [`WarnockSizes::for_frame`] says how much.
+#[derive(Debug)]
+pub struct WarnockStorage<'s> {
+    /// The explicit stack of areas.
+    pub areas: &'s mut [WarnockArea],
+    /// Candidate lists (indices into `faces`), used as a stack.
+    pub lists: &'s mut [u16],
+    /// The frame's drawn faces in view.
+    pub faces: &'s mut [WarnockFace],
+}
+
+impl WarnockStorage<'_> {
+    /// Bytes of all the lent buffers.
+    pub fn bytes(&self) -> usize {
+        use core::mem::size_of_val;
+        size_of_val(self.areas) + size_of_val(self.lists) + size_of_val(self.faces)
+    }
+}
+
+/// Entries of each [`WarnockStorage`] slice that always suffice for a frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct WarnockSizes {
+    /// Stack entries: `3 L + 1`.
+    pub areas: usize,
+    /// Candidate list entries: `faces x (L + 2)`.
+    pub lists: usize,
+    /// Face entries: the mesh's faces.
+    pub faces: usize,
+}
+
+impl WarnockSizes {
+    /// Sizes for a mesh of `faces` faces in a `width` x `height` frame drawn in
+    /// bands of `band_rows` rows, where `L = ceil(log2(max(width, held rows)))` and
+    /// the held rows are the band plus its apron ([`storage_rows`](super::storage_rows)).
+    /// Fewer list entries often do: a frame that needs more stops with
+    /// [`Error::CapacityExceeded`] naming this bound.
+    pub const fn for_frame(faces: usize, width: u16, height: u16, band_rows: u16) -> Self {
+        let band = if band_rows == 0 { 1 } else { band_rows };
+        let held = if band >= height { height } else { band + 2 };
+        let levels = levels(width, held);
+        Self {
+            areas: 3 * levels + 1,
+            lists: faces * (levels + 2),
+            faces,
+        }
+    }
+}
+
+/// `ceil(log2(max(width, rows)))`: the splits from a `width` x `rows` area to one
+/// pixel.
+const fn levels(width: u16, rows: u16) -> usize {
+    let n = if width > rows { width } else { rows };
+    if n <= 1 {
+        0
+    } else {
+        (16 - (n - 1).leading_zeros()) as usize
+    }
+}
+
+/// Warnock's area subdivision with S = `Frac` sub-pixel bits and room for `POLY`
+/// vertices per clipped face. It draws the frame of the Z-buffer with 32-bit depth.
+#[derive(Debug)]
+pub struct WarnockRenderer<Frac: LeEqU32, const POLY: usize> {
+    _frac: PhantomData<Frac>,
+}
+
+impl<Frac: LeEqU32, const POLY: usize> Default for WarnockRenderer<Frac, POLY> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<Frac: LeEqU32, const POLY: usize> WarnockRenderer<Frac, POLY> {
+    /// A renderer (it keeps nothing between frames).
+    pub const fn new() -> Self {
+        Self { _frac: PhantomData }
+    }
+
+    /// Renders `mesh` seen by `camera` into `sink`, deciding the visible faces by
+    /// area subdivision in `storage`. Too little storage is
+    /// [`Error::CapacityExceeded`] with what would do: the faces in view for
+    /// `faces`, the bounds of [`WarnockSizes`] for `areas` and `lists`.
+    /// `Stats::spans` counts the id runs written (a filled area one per row, a
+    /// pixel decided alone one) plus the spans sent to the sink.
+    #[allow(clippy::too_many_arguments)]
+    pub fn render<K: SpanSink, P: Palette<Color = K::Color>, R: FrameProbe>(
+        &mut self,
+        mesh: &Mesh<'_>,
+        edges: &EdgeAdjacency<'_>,
+        camera: &Camera,
+        settings: &Settings,
+        ws: &mut IdWorkspace<'_>,
+        storage: WarnockStorage<'_>,
+        palette: &P,
+        sink: &mut K,
+        probe: &mut R,
+    ) -> Result<Stats, Error<K::Error>>
+    where
+        K::Color: PixelColor,
+    {
+        let input = FrameInput {
+            mesh,
+            positions: mesh.vertices(),
+            edges,
+            camera,
+            settings,
+            s: Subpixel::<Frac>::BITS,
+        };
+        let mut pass = Subdivide::<POLY> { storage, count: 0 };
+        render_ids::<POLY, _, _, _, _>(&mut pass, &input, ws, palette, sink, probe)
+    }
+}
+
+/// One frame's subdivision.
+struct Subdivide<'s, const POLY: usize> {
+    storage: WarnockStorage<'s>,
+    /// Entries of `storage.faces` in use.
+    count: usize,
+}
+
+impl<const POLY: usize> IdPass for Subdivide<'_, POLY> {
+    fn begin(
+        &mut self,
+        ctx: &FrameCtx<'_, '_>,
+        vertices: &[ProjectedVertex],
+        drawn: &[u32],
+    ) -> Result<(), Error> {
+        let mut poly: Vec<ScreenVertex, POLY> = Vec::new();
+        let (width, height) = (ctx.viewport.width, ctx.viewport.height);
+        let mut count = 0;
+        for f in 0..ctx.mesh.face_count() {
+            if !bit(drawn, f) || !face_polygon(ctx, vertices, f, &mut poly)? {
+                continue;
+            }
+            let Some(pixels) = PixelBox::of(&poly, ctx.s, width, height) else {
+                continue;
+            };
+            let Some(plane) = DepthPlane::new(&poly, ctx.s) else {
+                continue;
+            };
+            let mut small = [ScreenVertex::default(); 4];
+            let small_len = if poly.len() <= small.len() {
+                for (to, from) in small.iter_mut().zip(poly.iter()) {
+                    *to = *from;
+                }
+                poly.len() as u8
+            } else {
+                0
+            };
+            if let Some(slot) = self.storage.faces.get_mut(count) {
+                *slot = WarnockFace {
+                    small,
+                    small_len,
+                    plane,
+                    tie: plane.tie(),
+                    // Below MAX_FACES = 65 535.
+                    face: f as u16,
+                    sense: convex_orientation::<POLY>(&poly),
+                    pixels,
+                };
+            }
+            count += 1;
+        }
+        need(count, self.storage.faces.len())?;
+        self.count = count;
+        Ok(())
+    }
+
+    fn fill(
+        &mut self,
+        ctx: &FrameCtx<'_, '_>,
+        vertices: &[ProjectedVertex],
+        _drawn: &[u32],
+        band: &mut IdBand<'_>,
+    ) -> Result<u32, Error> {
+        if band.held == 0 || band.width == 0 {
+            return Ok(0);
+        }
+        let root = Rect {
+            x0: 0,
+            y0: band.first,
+            x1: band.width,
+            y1: band.first + band.held,
+        };
+        let levels = levels(band.width, band.held);
+        let WarnockStorage {
+            areas,
+            lists,
+            faces,
+        } = &mut self.storage;
+        let faces = faces.get(..self.count).unwrap_or(&[]);
+        need(3 * levels + 1, areas.len())?;
+        let (list_bound, list_cap) = (self.count * (levels + 2), lists.len());
+        let list_full = || Error::CapacityExceeded {
+            needed: list_bound,
+            capacity: list_cap,
+        };
+        // The band's faces: the root's parent list.
+        let mut len = 0usize;
+        for (k, face) in faces.iter().enumerate() {
+            if face.pixels.meets(&root) {
+                *lists.get_mut(len).ok_or_else(list_full)? = k as u16;
+                len += 1;
+            }
+        }
+        let mut sub = Areas::<POLY> {
+            ctx,
+            vertices,
+            faces,
+            band,
+            poly: Vec::new(),
+            poly_of: None,
+            runs: 0,
+        };
+        let mut top = 0usize;
+        push(
+            areas,
+            &mut top,
+            WarnockArea {
+                rect: root,
+                list: 0,
+                len: len as u32,
+            },
+        );
+        while top > 0 {
+            top -= 1;
+            let Some(&area) = areas.get(top) else { break };
+            let rect = area.rect;
+            // The area's own list goes right after its parent's: everything above
+            // belonged to areas already finished (depth first).
+            let start = area.list as usize + area.len as usize;
+            let corners = rect.corners(ctx.s);
+            let mut n = 0usize;
+            for k in 0..area.len as usize {
+                let Some(&slot) = lists.get(area.list as usize + k) else {
+                    break;
+                };
+                if !sub.candidate(slot, &rect, &corners)? {
+                    continue;
+                }
+                *lists.get_mut(start + n).ok_or_else(list_full)? = slot;
+                n += 1;
+            }
+            let list = lists.get(start..start + n).unwrap_or(&[]);
+            if sub.decide(list, &rect, &corners)? {
+                continue;
+            }
+            // Split at the middle of each side longer than one pixel.
+            let (w, h) = (rect.x1 - rect.x0, rect.y1 - rect.y0);
+            let xs = if w > 1 { rect.x0 + w / 2 } else { rect.x1 };
+            let ys = if h > 1 { rect.y0 + h / 2 } else { rect.y1 };
+            for (x0, x1) in [(xs, rect.x1), (rect.x0, xs)] {
+                for (y0, y1) in [(ys, rect.y1), (rect.y0, ys)] {
+                    if x0 < x1 && y0 < y1 {
+                        let child = WarnockArea {
+                            rect: Rect { x0, y0, x1, y1 },
+                            list: start as u32,
+                            len: n as u32,
+                        };
+                        push(areas, &mut top, child);
+                    }
+                }
+            }
+        }
+        Ok(sub.runs)
+    }
+}
+
+/// Puts `area` on the stack (within the bound checked at the band's start).
+fn push(areas: &mut [WarnockArea], top: &mut usize, area: WarnockArea) {
+    if let Some(slot) = areas.get_mut(*top) {
+        *slot = area;
+        *top += 1;
+    }
+}
+
+/// What deciding one area needs.
+struct Areas<'a, 'b, 's, const POLY: usize> {
+    ctx: &'a FrameCtx<'a, 'a>,
+    vertices: &'a [ProjectedVertex],
+    faces: &'a [WarnockFace],
+    band: &'b mut IdBand<'s>,
+    poly: Vec<ScreenVertex, POLY>,
+    /// The face whose polygon `poly` holds.
+    poly_of: Option<u16>,
+    runs: u32,
+}
+
+impl<'a, const POLY: usize> Areas<'a, '_, '_, POLY> {
+    fn face(&self, slot: u16) -> Option<&'a WarnockFace> {
+        self.faces.get(usize::from(slot))
+    }
+
+    /// Puts the clipped polygon of `face` in `self.poly`: kept, copied from the
+    /// face's small polygon, or rebuilt from the vertex cache.
+    fn polygon(&mut self, face: &WarnockFace) -> Result<bool, Error> {
+        if self.poly_of == Some(face.face) {
+            return Ok(true);
+        }
+        self.poly_of = None;
+        let n = usize::from(face.small_len);
+        if let Some(small) = face.small.get(..n).filter(|_| n > 0) {
+            self.poly.clear();
+            for v in small {
+                let _ = self.poly.push(*v);
+            }
+        } else if !face_polygon(
+            self.ctx,
+            self.vertices,
+            usize::from(face.face),
+            &mut self.poly,
+        )? {
+            return Ok(false);
+        }
+        self.poly_of = Some(face.face);
+        Ok(true)
+    }
+
+    /// Whether the face in `slot` may cover a centre of the area.
+    fn candidate(
+        &mut self,
+        slot: u16,
+        rect: &Rect,
+        corners: &[(i64, i64); 4],
+    ) -> Result<bool, Error> {
+        let Some(face) = self.face(slot) else {
+            return Ok(false);
+        };
+        if !face.pixels.meets(rect) {
+            return Ok(false);
+        }
+        if face.sense == 0 || !self.polygon(face)? {
+            return Ok(true);
+        }
+        Ok(!outside_an_edge(&self.poly, face.sense, corners))
+    }
+
+    /// Whether the face covers every centre of the area: convex and covering the
+    /// four corner centres (its covered set is convex, so it holds their hull).
+    fn surrounds(&mut self, face: &WarnockFace, rect: &Rect) -> Result<bool, Error> {
+        if face.sense == 0 || !face.pixels.holds(rect) || !self.polygon(face)? {
+            return Ok(false);
+        }
+        let s = self.ctx.s;
+        let (l, r) = (i64::from(rect.x0), i64::from(rect.x1 - 1));
+        let (t, b) = (i64::from(rect.y0), i64::from(rect.y1 - 1));
+        Ok([(l, t), (r, t), (l, b), (r, b)]
+            .iter()
+            .all(|&(i, j)| covers_centre(&self.poly, s, i, j)))
+    }
+
+    /// Decides the area from its candidates `list` (slots in increasing face
+    /// index); false when it must be split.
+    fn decide(
+        &mut self,
+        list: &[u16],
+        rect: &Rect,
+        corners: &[(i64, i64); 4],
+    ) -> Result<bool, Error> {
+        let range = |face: &WarnockFace| {
+            corners.iter().fold((u32::MAX, 0), |(lo, hi), &(x, y)| {
+                let q = face.plane.at(x, y);
+                (lo.min(q), hi.max(q))
+            })
+        };
+        match list {
+            [] => return Ok(true),
+            [only] => {
+                let Some(face) = self.face(*only) else {
+                    return Ok(true);
+                };
+                if self.surrounds(face, rect)? {
+                    self.fill(rect, face.face);
+                } else {
+                    self.fill_covered(face, rect)?;
+                }
+                return Ok(true);
+            }
+            _ => {}
+        }
+        for (k, &slot) in list.iter().enumerate() {
+            let Some(face) = self.face(slot) else {
+                continue;
+            };
+            if !self.surrounds(face, rect)? {
+                continue;
+            }
+            let (nearest, _) = range(face);
+            // Z-buffer order: an earlier face loses to this one where this one is
+            // nearer by more than this one's tie; a later one never wins where it
+            // is not nearer by more than its own tie.
+            let wins = list.iter().enumerate().all(|(m, &other)| {
+                if m == k {
+                    return true;
+                }
+                let Some(other) = self.face(other) else {
+                    return true;
+                };
+                let (_, farthest) = range(other);
+                if m < k {
+                    nearest > farthest.saturating_add(face.tie)
+                } else {
+                    farthest <= nearest.saturating_add(other.tie)
+                }
+            });
+            if wins {
+                self.fill(rect, face.face);
+                return Ok(true);
+            }
+        }
+        if !rect.is_pixel() {
+            return Ok(false);
+        }
+        // One pixel: the Z-buffer's decision.
+        let (i, j) = (i64::from(rect.x0), i64::from(rect.y0));
+        let [(x, y), ..] = *corners;
+        let mut best: Option<(u16, u32)> = None;
+        for &slot in list {
+            let Some(face) = self.face(slot) else {
+                continue;
+            };
+            if !self.polygon(face)? || !covers_centre(&self.poly, self.ctx.s, i, j) {
+                continue;
+            }
+            let q = face.plane.at(x, y);
+            if best.is_none_or(|(_, near)| q > near.saturating_add(face.tie)) {
+                best = Some((face.face, q));
+            }
+        }
+        if let Some((f, _)) = best {
+            self.fill(rect, f);
+        }
+        Ok(true)
+    }
+
+    /// The area shows `face`.
+    fn fill(&mut self, rect: &Rect, face: u16) {
+        let id = face.wrapping_add(1);
+        for y in rect.y0..rect.y1 {
+            if let Some(start) = self.band.index(rect.x0, y) {
+                let end = start + usize::from(rect.x1 - rect.x0);
+                if let Some(ids) = self.band.ids.get_mut(start..end) {
+                    ids.fill(id);
+                    self.runs += 1;
+                }
+            }
+        }
+    }
+
+    /// Each centre of the area that `face` covers shows it.
+    fn fill_covered(&mut self, face: &WarnockFace, rect: &Rect) -> Result<(), Error> {
+        if !self.polygon(face)? {
+            return Ok(());
+        }
+        let id = face.face.wrapping_add(1);
+        let s = self.ctx.s;
+        for y in rect.y0..rect.y1 {
+            let mut run = false;
+            for x in rect.x0..rect.x1 {
+                let covered = covers_centre(&self.poly, s, i64::from(x), i64::from(y));
+                if covered {
+                    if let Some(slot) = self.band.index(x, y).and_then(|k| self.band.ids.get_mut(k))
+                    {
+                        *slot = id;
+                    }
+                    self.runs += u32::from(!run);
+                }
+                run = covered;
+            }
+        }
+        Ok(())
+    }
+}
