@@ -12,7 +12,10 @@
 //! a dashed hidden line into the faces.
 //!
 //! A face that covers sub-samples of a pixel but no pixel centre of its 3 x 3
-//! neighbourhood (a sliver thinner than a pixel, a vertex poking in) is not seen.
+//! neighbourhood is not in the face ids there. Faces less than three pixels wide or
+//! high (most such faces: small faces of a detailed mesh) are found by their
+//! bounding boxes, up to 512 per band and 128 per row; a longer diagonal sliver or a
+//! sharp tip is still missed where no centre near it is covered.
 
 use embedded_graphics_core::pixelcolor::{Gray8, GrayColor, PixelColor};
 use heapless::Vec;
@@ -32,8 +35,18 @@ pub(crate) const GREY_MIN_BITS: u32 = 2;
 /// Faces whose clipped polygon and depth plane are kept set up.
 const SLOTS: usize = 12;
 
-/// The most faces a pixel's 3 x 3 neighbourhood can show.
-const CANDIDATES: usize = 9;
+/// The most faces considered at one pixel: the 3 x 3 neighbourhood's nine and
+/// small faces.
+const CANDIDATES: usize = 16;
+
+/// Faces whose bounding box is narrower or lower than this many pixels are "small":
+/// they may cover sub-samples of a pixel without covering any pixel centre near it,
+/// so the face ids do not show them; they are looked up by bounding box.
+const THIN_PX: i32 = 3;
+
+/// The most small faces kept per band, and per row of it (more are not seen).
+const SMALL: usize = 512;
+const ROW_SMALL: usize = 128;
 
 /// The grey levels of a frame with anti-aliased face edges, for
 /// [`ZBufferRenderer::render_grey`](super::ZBufferRenderer::render_grey). Levels are
@@ -175,7 +188,10 @@ pub(crate) fn resolve(cands: &[Candidate], s: u32, i: i64, j: i64, background: u
     while rest != 0 {
         let k = i64::from(rest.trailing_zeros());
         rest &= rest - 1;
-        let (x, y) = (i * px + (2 * (k % 4) + 1) * unit, j * px + (2 * (k / 4) + 1) * unit);
+        let (x, y) = (
+            i * px + (2 * (k % 4) + 1) * unit,
+            j * px + (2 * (k / 4) + 1) * unit,
+        );
         let mut best: Option<(u32, u8)> = None;
         for c in cands.iter().filter(|c| c.mask & (1 << k) != 0) {
             let q = c.plane.at(x, y);
@@ -204,6 +220,9 @@ pub(crate) struct GreyCompose<'p, G, const POLY: usize> {
     palette: &'p G,
     slots: [Slot<POLY>; SLOTS],
     next: usize,
+    /// The band's small faces (see [`THIN_PX`]): id and bounding box x0, y0, x1, y1
+    /// in sub-pixel units.
+    small: Vec<(u16, [i32; 4]), SMALL>,
 }
 
 impl<'p, G: GreyPalette, const POLY: usize> GreyCompose<'p, G, POLY> {
@@ -221,6 +240,45 @@ impl<'p, G: GreyPalette, const POLY: usize> GreyCompose<'p, G, POLY> {
                 }
             }; SLOTS],
             next: 0,
+            small: Vec::new(),
+        }
+    }
+
+    /// Finds the drawn faces wholly in view, less than [`THIN_PX`] wide or high, that
+    /// reach rows `top .. end` (the band).
+    fn find_small(
+        &mut self,
+        ctx: &FrameCtx<'_, '_>,
+        vertices: &[ProjectedVertex],
+        drawn: &[u32],
+        top: u16,
+        end: u16,
+    ) {
+        self.small.clear();
+        let thin = THIN_PX << ctx.s;
+        let (band_lo, band_hi) = (i32::from(top) << ctx.s, i32::from(end) << ctx.s);
+        for f in 0..ctx.mesh.face_count() {
+            if !bit(drawn, f) {
+                continue;
+            }
+            let mut b = [i32::MAX, i32::MAX, i32::MIN, i32::MIN];
+            let mut outside = 0u8;
+            for &v in ctx.mesh.face(f) {
+                let p = vertices
+                    .get(v as usize)
+                    .map_or(ProjectedVertex::default(), |p| *p);
+                outside |= p.outside;
+                b = [
+                    b[0].min(p.screen.x),
+                    b[1].min(p.screen.y),
+                    b[2].max(p.screen.x),
+                    b[3].max(p.screen.y),
+                ];
+            }
+            let small = b[2].saturating_sub(b[0]) < thin || b[3].saturating_sub(b[1]) < thin;
+            if outside == 0 && small && b[3] > band_lo && b[1] < band_hi {
+                let _ = self.small.push(((f + 1) as u16, b));
+            }
         }
     }
 
@@ -272,19 +330,38 @@ impl<'p, G: GreyPalette, const POLY: usize> GreyCompose<'p, G, POLY> {
 
 /// The distinct drawn face ids of the 3 x 3 neighbourhood of pixel `x` (rows that are
 /// empty are outside the frame), ascending; `None` when all nine are one id.
-fn neighbourhood(rows: [&[u16]; 3], x: usize, drawn: &[u32]) -> Option<Vec<u16, CANDIDATES>> {
+/// A small face reaching the row: `(x0, x1)` its extent in sub-pixel units.
+fn neighbourhood(
+    rows: [&[u16]; 3],
+    x: usize,
+    drawn: &[u32],
+    small: &[(u16, i32, i32)],
+    s: u32,
+) -> Option<Vec<u16, CANDIDATES>> {
     let centre = rows[1].get(x).copied().unwrap_or(0);
     let mut ids: Vec<u16, CANDIDATES> = Vec::new();
     let mut mixed = false;
+    let add = |id: u16, ids: &mut Vec<u16, CANDIDATES>| {
+        if !ids.contains(&id) {
+            // Insertion in order: a few ids.
+            let at = ids.iter().position(|&k| k > id).unwrap_or(ids.len());
+            let _ = ids.insert(at, id);
+        }
+    };
     for row in rows {
         for n in x.saturating_sub(1)..=x + 1 {
             let Some(&id) = row.get(n) else { continue };
             mixed |= id != centre;
-            if id != 0 && bit(drawn, usize::from(id - 1)) && !ids.contains(&id) {
-                // Insertion in order: at most nine ids.
-                let at = ids.iter().position(|&k| k > id).unwrap_or(ids.len());
-                let _ = ids.insert(at, id);
+            if id != 0 && bit(drawn, usize::from(id - 1)) {
+                add(id, &mut ids);
             }
+        }
+    }
+    let (lo, hi) = ((x as i32) << s, (x as i32 + 1) << s);
+    for &(id, x0, x1) in small {
+        if x1 > lo && x0 < hi {
+            mixed |= id != centre;
+            add(id, &mut ids);
         }
     }
     mixed.then_some(ids)
@@ -313,6 +390,7 @@ impl<K: SpanSink, G: GreyPalette<Color = K::Color>, const POLY: usize> Compose<K
                 .map_err(Error::Target);
         }
         let background = self.palette.background();
+        self.find_small(ctx, vertices, drawn, band.top, band.top + band.rows);
         let mut spans = 0u32;
         let mut level_of: (u16, u8) = (0, 0);
         for r in 0..band.rows {
@@ -324,6 +402,11 @@ impl<K: SpanSink, G: GreyPalette<Color = K::Color>, const POLY: usize> Compose<K
             ];
             let (visible, hidden) = masks.row(r);
             probe.row(y, rows[1], visible, hidden);
+            let (lo, hi) = (i32::from(y) << ctx.s, (i32::from(y) + 1) << ctx.s);
+            let mut small: Vec<(u16, i32, i32), ROW_SMALL> = Vec::new();
+            for &(id, b) in self.small.iter().filter(|(_, b)| b[3] > lo && b[1] < hi) {
+                let _ = small.push((id, b[0], b[2]));
+            }
             let line_word = |k: usize| -> u32 {
                 let v = visible.get(k).copied().unwrap_or(0);
                 let h = hidden.get(k).copied().unwrap_or(0);
@@ -355,7 +438,7 @@ impl<K: SpanSink, G: GreyPalette<Color = K::Color>, const POLY: usize> Compose<K
                     let x16 = x as u16;
                     let color = if word & (1 << n) != 0 {
                         Some(self.palette.line())
-                    } else if let Some(ids) = neighbourhood(rows, x, drawn) {
+                    } else if let Some(ids) = neighbourhood(rows, x, drawn, &small, ctx.s) {
                         let (i, j) = (i64::from(x16), i64::from(y));
                         let mut cands: Vec<Candidate, CANDIDATES> = Vec::new();
                         for &c in &ids {

@@ -30,13 +30,23 @@ fn mask(poly: &[ScreenVertex], i: i64, j: i64) -> u16 {
 /// sub-samples: 8 of 16.
 #[test]
 fn a_half_plane_through_the_middle_covers_half() {
-    let rect = [v(px(2.5), 0), v(px(10.0), 0), v(px(10.0), px(10.0)), v(px(2.5), px(10.0))];
+    let rect = [
+        v(px(2.5), 0),
+        v(px(10.0), 0),
+        v(px(10.0), px(10.0)),
+        v(px(2.5), px(10.0)),
+    ];
     assert_eq!(mask(&rect, 2, 3), 0xCCCC);
     assert_eq!(mask(&rect, 2, 3).count_ones(), 8);
     assert_eq!(mask(&rect, 1, 3), 0);
     assert_eq!(mask(&rect, 3, 3), 0xFFFF);
     // A horizontal edge a quarter into the pixel: three rows of four.
-    let low = [v(0, px(5.25)), v(px(10.0), px(5.25)), v(px(10.0), px(9.0)), v(0, px(9.0))];
+    let low = [
+        v(0, px(5.25)),
+        v(px(10.0), px(5.25)),
+        v(px(10.0), px(9.0)),
+        v(0, px(9.0)),
+    ];
     assert_eq!(mask(&low, 4, 5), 0xFFF0);
 }
 
@@ -134,7 +144,16 @@ where
     let mut sink = FillSolid::new(&mut display).unwrap();
     let mut renderer = ZBufferRenderer::<U4, 64, 16>::new();
     renderer
-        .render_grey(&mesh, &adj, &camera, &settings, &mut ws, palette, &mut sink, &mut ())
+        .render_grey(
+            &mesh,
+            &adj,
+            &camera,
+            &settings,
+            &mut ws,
+            palette,
+            &mut sink,
+            &mut (),
+        )
         .unwrap();
     display
 }
@@ -164,7 +183,12 @@ fn a_shared_edge_lets_no_background_through() {
         [9.5, 9.75, 0.0],
         [-10.5, 9.75, 0.0],
     ];
-    let d = picture(&v, &[[0, 1, 2], [0, 2, 3]], &flat::<Gray8>(200), DrawMode::Surfaces);
+    let d = picture(
+        &v,
+        &[[0, 1, 2], [0, 2, 3]],
+        &flat::<Gray8>(200),
+        DrawMode::Surfaces,
+    );
     for y in 23..42 {
         for x in 22..41 {
             assert_eq!(luma(&d, x, y), Some(200), "({x}, {y})");
@@ -233,7 +257,12 @@ fn a_gray4_triangle() {
 #[test]
 fn lines_stay_solid() {
     let v = [[-10.0, -10.0, 0.0], [10.0, -10.0, 0.0], [0.0, 10.0, 0.0]];
-    let d = picture(&v, &[[0, 1, 2]], &flat::<Gray8>(100), DrawMode::SurfacesDashed);
+    let d = picture(
+        &v,
+        &[[0, 1, 2]],
+        &flat::<Gray8>(100),
+        DrawMode::SurfacesDashed,
+    );
     // The bottom edge y = -10 (screen 42) is a boundary edge: a solid white row.
     for x in 23..41 {
         assert_eq!(luma(&d, x, 42), Some(255), "({x}, 42)");

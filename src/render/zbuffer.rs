@@ -186,8 +186,9 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
                     &ctx, vertices, drawn, features, edges, settings, &band.ids, &mut masks,
                 );
             }
-            stats.spans +=
-                composer.band(&ctx, settings, vertices, drawn, &band.ids, &masks, sink, probe)?;
+            stats.spans += composer.band(
+                &ctx, settings, vertices, drawn, &band.ids, &masks, sink, probe,
+            )?;
             top += rows;
         }
         sink.flush().map_err(Error::Target)?;
