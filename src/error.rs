@@ -81,6 +81,14 @@ pub enum Error<T = Infallible> {
     },
     /// Surface codes break a condition of their coding scheme (paper 003).
     Scheme(crate::codes::SchemeViolation),
+    /// Too few sub-pixel bits for a pixel's sub-samples to lie on the fixed-point grid
+    /// (the grey coverage mode samples a 4 x 4 grid at eighths of a pixel).
+    SubpixelTooCoarse {
+        /// Sub-pixel bits compiled in.
+        bits: u32,
+        /// The fewest that work.
+        needed: u32,
+    },
     /// The span sink or draw target failed.
     Target(T),
 }
@@ -127,6 +135,7 @@ impl Error<Infallible> {
             Error::DepthOrderMismatch => Error::DepthOrderMismatch,
             Error::CodeTooWide { needed, capacity } => Error::CodeTooWide { needed, capacity },
             Error::Scheme(v) => Error::Scheme(v),
+            Error::SubpixelTooCoarse { bits, needed } => Error::SubpixelTooCoarse { bits, needed },
             Error::Target(never) => match never {},
         }
     }
@@ -172,6 +181,10 @@ impl<T: fmt::Debug> fmt::Display for Error<T> {
                 "a row needs a {needed}-bit surface code, {capacity} bits are compiled in"
             ),
             Error::Scheme(v) => write!(f, "surface codes: {v}"),
+            Error::SubpixelTooCoarse { bits, needed } => write!(
+                f,
+                "{bits} sub-pixel bits are too few for sub-samples, at least {needed} are needed"
+            ),
             Error::Target(e) => write!(f, "draw target failed: {e:?}"),
         }
     }

@@ -41,6 +41,7 @@ outputs
   --scale N            PNG pixels per frame pixel, 1..=16 (default 3; a faint pixel grid from 3 up)
   --ids FILE.pgm       P5 16-bit: 1 + visible face id, 0 = none (at most 65535 faces)
   --lines FILE.pgm     P5 8-bit: 0 none, 1 visible edge, 2 hidden edge
+  --grey FILE.png      8-bit grey picture, face edges anti-aliased (Z-buffer engine, subpixel >= 2)
   --stats              print `name: value` figures (default when no other output is asked for)
   --hash               print `hash: HEX`, FNV-1a 64 of the packed 1-bpp frame
   --pick X,Y           print what is under pixel (X, Y): `pick_face: F` (0-based, or none) and
@@ -99,6 +100,8 @@ pub struct Options {
     pub scale: usize,
     pub ids: Option<PathBuf>,
     pub lines: Option<PathBuf>,
+    /// `--grey`: the anti-aliased grey picture (`host_tests::grey`).
+    pub grey: Option<PathBuf>,
     pub stats: bool,
     pub hash: bool,
     /// `--pick X,Y`: the pixel to pick.
@@ -124,6 +127,7 @@ impl Default for Options {
             scale: 3,
             ids: None,
             lines: None,
+            grey: None,
             stats: false,
             hash: false,
             pick: None,
@@ -170,7 +174,7 @@ fn size(s: &str) -> Result<(usize, usize), String> {
 }
 
 /// Flags that take a value.
-const VALUED: [&str; 22] = [
+const VALUED: [&str; 23] = [
     "--size",
     "--eye",
     "--target",
@@ -190,6 +194,7 @@ const VALUED: [&str; 22] = [
     "--out",
     "--ids",
     "--lines",
+    "--grey",
     "--look",
     "--scale",
     "--pick",
@@ -325,6 +330,7 @@ where
             "--out" => o.out = Some(PathBuf::from(v)),
             "--ids" => o.ids = Some(PathBuf::from(v)),
             "--lines" => o.lines = Some(PathBuf::from(v)),
+            "--grey" => o.grey = Some(PathBuf::from(v)),
             "--look" => {
                 o.look = match v.as_str() {
                     "lcd-white" => Look::LcdWhite,
@@ -377,6 +383,12 @@ where
         let ext = out.extension().and_then(|e| e.to_str()).unwrap_or("");
         if !ext.eq_ignore_ascii_case("png") {
             return Err(format!("--out: `{}` does not end in .png", out.display()));
+        }
+    }
+    if let Some(grey) = &o.grey {
+        let ext = grey.extension().and_then(|e| e.to_str()).unwrap_or("");
+        if !ext.eq_ignore_ascii_case("png") {
+            return Err(format!("--grey: `{}` does not end in .png", grey.display()));
         }
     }
     Ok(o)
@@ -587,6 +599,7 @@ mod tests {
             (&["--look", "crt"], "--look"),
             (&["--pattern", "zigzag"], "--pattern"),
             (&["--out", "a.jpg"], "--out"),
+            (&["--grey", "a.pgm"], "--grey"),
             (&["--out"], "--out"),
             (&["--frobnicate"], "--frobnicate"),
             (&["--stats=1"], "--stats"),

@@ -7,6 +7,7 @@ pub mod cli;
 pub mod engines;
 pub mod fit;
 pub mod frame;
+pub mod grey;
 pub mod image;
 pub mod metrics;
 pub mod obj;

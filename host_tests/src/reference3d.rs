@@ -445,6 +445,39 @@ impl RefFrame {
             && covers(&face.screen, (sx, sy))
     }
 
+    /// The drawn face nearest to the eye along the ray through screen point (sx, sy)
+    /// among those whose projected polygon covers it (lower index on equal depth), as
+    /// the surfaces pass decides at pixel centres: the visible face at any point, for
+    /// sub-sample coverage.
+    pub fn nearest_face(&self, sx: f64, sy: f64) -> Option<usize> {
+        let tx = ((sx + TILE as f64) / TILE as f64).floor();
+        let ty = ((sy + TILE as f64) / TILE as f64).floor();
+        let all: Vec<u32>;
+        let faces: &[u32] =
+            if tx < 0.0 || ty < 0.0 || tx >= self.tiles_x as f64 || ty >= self.tiles_y as f64 {
+                all = (0..self.faces.len() as u32)
+                    .filter(|&f| self.faces[f as usize].drawn)
+                    .collect();
+                &all
+            } else {
+                &self.tiles[ty as usize * self.tiles_x + tx as usize]
+            };
+        let mut best: Option<(usize, f64)> = None;
+        for &f in faces {
+            let f = f as usize;
+            if !self.face_covers(f, sx, sy) {
+                continue;
+            }
+            let Some(w) = self.face_depth(f, sx, sy) else {
+                continue;
+            };
+            if best.is_none_or(|(_, bw)| w < bw * (1.0 - DEPTH_EPS)) {
+                best = Some((f, w));
+            }
+        }
+        best.map(|(f, _)| f)
+    }
+
     /// Distance from the point to face `f`'s projected polygon (0 inside, infinity when
     /// nothing of the face is left after clipping).
     pub fn face_distance(&self, f: usize, sx: f64, sy: f64) -> f64 {

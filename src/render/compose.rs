@@ -3,10 +3,11 @@
 use embedded_graphics_core::pixelcolor::{BinaryColor, PixelColor};
 
 use super::lines::LineMasks;
+use super::transform::ProjectedVertex;
 use super::zband::IdBand;
 use super::{bit, DrawMode, FrameCtx, Settings};
 use crate::mesh::Viewpoint;
-use crate::{Span, SpanSink};
+use crate::{Error, Span, SpanSink};
 
 /// The colours of a frame.
 pub trait Palette {
@@ -85,7 +86,7 @@ impl FrameProbe for () {
 }
 
 /// Shading of face `f`: |cos| of the angle between its normal and the eye direction.
-fn shade(ctx: &FrameCtx<'_, '_>, view: &Viewpoint, f: usize) -> u8 {
+pub(crate) fn shade(ctx: &FrameCtx<'_, '_>, view: &Viewpoint, f: usize) -> u8 {
     let n = ctx.mesh.face_normal(f);
     let len = crate::camera::sqrt(crate::camera::dot(n, n));
     if len <= 0.0 {
@@ -177,4 +178,41 @@ pub(crate) fn emit_band<K: SpanSink, P: Palette<Color = K::Color>, R: FrameProbe
         put(band.width, None, sink)?;
     }
     Ok(spans)
+}
+
+/// One composition stage of a frame loop: a finished band (face ids with apron, line
+/// masks) to spans. [`Flat`] is [`emit_band`]; the grey coverage mode is another.
+pub(crate) trait Compose<K: SpanSink> {
+    /// Sends the band's rows to the sink; returns the number of spans sent.
+    #[allow(clippy::too_many_arguments)]
+    fn band<R: FrameProbe>(
+        &mut self,
+        ctx: &FrameCtx<'_, '_>,
+        settings: &Settings,
+        vertices: &[ProjectedVertex],
+        drawn: &[u32],
+        band: &IdBand<'_>,
+        masks: &LineMasks<'_>,
+        sink: &mut K,
+        probe: &mut R,
+    ) -> Result<u32, Error<K::Error>>;
+}
+
+/// One colour per pixel from a [`Palette`]: [`emit_band`].
+pub(crate) struct Flat<'p, P>(pub &'p P);
+
+impl<K: SpanSink, P: Palette<Color = K::Color>> Compose<K> for Flat<'_, P> {
+    fn band<R: FrameProbe>(
+        &mut self,
+        ctx: &FrameCtx<'_, '_>,
+        settings: &Settings,
+        _: &[ProjectedVertex],
+        drawn: &[u32],
+        band: &IdBand<'_>,
+        masks: &LineMasks<'_>,
+        sink: &mut K,
+        probe: &mut R,
+    ) -> Result<u32, Error<K::Error>> {
+        emit_band(ctx, settings, band, masks, drawn, self.0, sink, probe).map_err(Error::Target)
+    }
 }

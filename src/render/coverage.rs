@@ -42,6 +42,8 @@ pub(crate) fn covers(poly: &[ScreenVertex], px: i64, py: i64) -> bool {
 }
 
 /// Whether the centre of pixel (`i`, `j`) is covered by `poly` at `s` sub-pixel bits.
+// For the sampling engines; only the tests use it so far.
+#[allow(dead_code)]
 pub(crate) fn covers_centre(poly: &[ScreenVertex], s: u32, i: i64, j: i64) -> bool {
     let h = 1i64 << s;
     covers(poly, (2 * i + 1) * h, (2 * j + 1) * h)

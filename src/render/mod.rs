@@ -8,6 +8,7 @@
 //! visible and a hidden mask (the P-buffer pattern decides hidden pixels), and
 //! composition turns each row into spans.
 
+mod abuffer;
 mod active;
 mod codefill;
 mod compose;
@@ -24,6 +25,7 @@ mod zbuffer;
 use embedded_graphics_core::pixelcolor::BinaryColor;
 use heapless::Vec;
 
+pub use abuffer::{GreyPalette, GreyShades};
 pub use codefill::{CodeFillRenderer, CodeWorkspace, DepthOrder, RowCodes, Visibility};
 pub use compose::{FrameProbe, MonoPalette, Palette, SolidPalette};
 pub use idpass::IdWorkspace;

@@ -10,7 +10,8 @@ use embedded_graphics_core::pixelcolor::{BinaryColor, PixelColor};
 use fixed::types::extra::LeEqU32;
 use heapless::Vec;
 
-use super::compose::{self, FrameProbe, Palette};
+use super::abuffer::{GreyCompose, GreyPalette, GREY_MIN_BITS};
+use super::compose::{self, Compose, FrameProbe, Palette};
 use super::lines::{line_pass, LineMasks};
 use super::transform::{ProjectedVertex, ScreenVertex};
 use super::zband::{Depth, DepthPlane, FaceSpans, IdBand, ZBand};
@@ -63,6 +64,69 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
     where
         K::Color: PixelColor,
     {
+        self.render_with(
+            mesh,
+            edges,
+            camera,
+            settings,
+            ws,
+            &mut compose::Flat(palette),
+            sink,
+            probe,
+        )
+    }
+
+    /// Renders like [`render`](Self::render) for a grey-scale target (`Gray4`,
+    /// `Gray8`, ...), anti-aliasing the edges of faces: where a pixel's 3 x 3
+    /// neighbourhood holds more than one face, the pixel's grey is the mean over a
+    /// 4 x 4 grid of sub-samples of the grey of the face nearest at each sub-sample
+    /// (or the background), an A-buffer of 16-bit coverage masks (see
+    /// [`GreyPalette`]). Feature-edge lines stay solid in the line colour; modes
+    /// without faces draw the lines only. Pixels no face reaches are left untouched:
+    /// clear the target to the palette's background first.
+    ///
+    /// Needs S >= 2 sub-pixel bits, so that the sub-samples (at odd eighths of a
+    /// pixel) lie on the half sub-pixel grid of the coverage test:
+    /// [`Error::SubpixelTooCoarse`] otherwise.
+    #[allow(clippy::too_many_arguments)]
+    pub fn render_grey<D: Depth, K: SpanSink, G: GreyPalette<Color = K::Color>, R: FrameProbe>(
+        &mut self,
+        mesh: &Mesh<'_>,
+        edges: &EdgeAdjacency<'_>,
+        camera: &Camera,
+        settings: &Settings,
+        ws: &mut Workspace<'_, D>,
+        palette: &G,
+        sink: &mut K,
+        probe: &mut R,
+    ) -> Result<Stats, Error<K::Error>>
+    where
+        K::Color: PixelColor,
+    {
+        let s = Subpixel::<Frac>::BITS;
+        if s < GREY_MIN_BITS {
+            return Err(Error::SubpixelTooCoarse {
+                bits: s,
+                needed: GREY_MIN_BITS,
+            });
+        }
+        let mut grey = GreyCompose::<G, POLY>::new(palette);
+        self.render_with(mesh, edges, camera, settings, ws, &mut grey, sink, probe)
+    }
+
+    /// The frame loop, with `composer` turning each finished band into spans.
+    #[allow(clippy::too_many_arguments)]
+    fn render_with<D: Depth, K: SpanSink, C: Compose<K>, R: FrameProbe>(
+        &mut self,
+        mesh: &Mesh<'_>,
+        edges: &EdgeAdjacency<'_>,
+        camera: &Camera,
+        settings: &Settings,
+        ws: &mut Workspace<'_, D>,
+        composer: &mut C,
+        sink: &mut K,
+        probe: &mut R,
+    ) -> Result<Stats, Error<K::Error>> {
         let viewport = sink.viewport();
         let (width, height) = (viewport.width, viewport.height);
         let s = Subpixel::<Frac>::BITS;
@@ -122,10 +186,9 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
                     &ctx, vertices, drawn, features, edges, settings, &band.ids, &mut masks,
                 );
             }
-            stats.spans += compose::emit_band(
-                &ctx, settings, &band.ids, &masks, drawn, palette, sink, probe,
-            )
-            .map_err(Error::Target)?;
+            stats.spans += composer.band(
+                &ctx, settings, vertices, drawn, &band.ids, &masks, sink, probe,
+            )?;
             top += rows;
         }
         sink.flush().map_err(Error::Target)?;

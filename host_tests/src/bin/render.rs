@@ -22,7 +22,8 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use host_tests::cli::{parse_args, Look, Options, USAGE};
-use host_tests::frame::Frame;
+use host_tests::frame::{CameraSpec, Frame, MeshData};
+use host_tests::grey::{render_grey, shades};
 use host_tests::image::{fnv1a64, packed_pixel, packed_stride, write_rgb_png};
 use host_tests::obj::{load_scene, workspace_root};
 use host_tests::pipeline::render_frame;
@@ -104,6 +105,26 @@ fn write_png(o: &Options, path: &Path, frame: &Frame) -> Result<(), Fail> {
         .map_err(|e| bad(format!("--out: cannot write {}: {e}", path.display())))
 }
 
+/// `--grey`: the frame rendered again with anti-aliased face edges
+/// (`host_tests::grey`), each pixel a `scale x scale` block of grey.
+fn write_grey(o: &Options, path: &Path, mesh: &MeshData, camera: &CameraSpec) -> Result<(), Fail> {
+    let frame = render_grey(mesh, camera, &o.spec, &shades()).map_err(bad)?;
+    let (w, h, s) = (frame.width, frame.height, o.scale);
+    let mut rgb = Vec::with_capacity(w * s * h * s * 3);
+    for y in 0..h {
+        for _ in 0..s {
+            for x in 0..w {
+                let g = frame.grey[y * w + x];
+                for _ in 0..s {
+                    rgb.extend_from_slice(&[g, g, g]);
+                }
+            }
+        }
+    }
+    write_rgb_png(path, &rgb, w * s, h * s, 1)
+        .map_err(|e| bad(format!("--grey: cannot write {}: {e}", path.display())))
+}
+
 fn run() -> Result<(), Fail> {
     let args: Vec<String> = std::env::args_os()
         .skip(1)
@@ -165,6 +186,9 @@ fn run() -> Result<(), Fail> {
     if let Some(p) = &o.lines {
         write_file("--lines", p, &lines_pgm(&frame))?;
     }
+    if let Some(p) = &o.grey {
+        write_grey(&o, p, &mesh, &camera)?;
+    }
     let mut text = String::new();
     if o.hash {
         text += &format!("hash: {:016x}\n", fnv1a64(&frame.packed));
@@ -184,7 +208,9 @@ fn run() -> Result<(), Fail> {
         }
     }
     let asked_other =
-        o.hash || o.out.is_some() || o.ids.is_some() || o.lines.is_some() || o.pick.is_some();
+        o.hash || o.out.is_some() || o.ids.is_some() || o.lines.is_some()
+        || o.pick.is_some()
+        || o.grey.is_some();
     if o.stats || !asked_other {
         text += &format!("scene: {scene_name}\n");
         text += &format!("size: {w}x{h}\n");
