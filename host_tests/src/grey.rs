@@ -141,6 +141,7 @@ fn grey_sd<Frac: LeEqU32, D: Depth>(
             &camera,
             &settings,
             &mut ws,
+            &mut vec![pbuffer::render::SmallFace::default(); mesh.face_count()],
             palette,
             &mut sink,
             &mut (),

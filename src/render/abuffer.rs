@@ -35,18 +35,29 @@ pub(crate) const GREY_MIN_BITS: u32 = 2;
 /// Faces whose clipped polygon and depth plane are kept set up.
 const SLOTS: usize = 12;
 
-/// The most faces considered at one pixel: the 3 x 3 neighbourhood's nine and
-/// small faces.
-const CANDIDATES: usize = 16;
+/// The most faces considered at one pixel: the 3 x 3 neighbourhood's nine and the
+/// small faces over it. More is [`Error::CapacityExceeded`] (`needed` then says one
+/// more, a lower bound): dense meshes on small frames reach it (fandisk and the
+/// teapot at 128 x 64), where thousands of faces are below a pixel.
+const CANDIDATES: usize = 64;
 
 /// Faces whose bounding box is narrower or lower than this many pixels are "small":
 /// they may cover sub-samples of a pixel without covering any pixel centre near it,
 /// so the face ids do not show them; they are looked up by bounding box.
 const THIN_PX: i32 = 3;
 
-/// The most small faces kept per band, and per row of it (more are not seen).
-const SMALL: usize = 512;
-const ROW_SMALL: usize = 128;
+/// A face small enough to be missed by the face ids (see the module comment), kept
+/// for one band of [`ZBufferRenderer::render_grey`](super::ZBufferRenderer::render_grey):
+/// the caller lends a slice of these, one per face that can be small in a band (the
+/// mesh's face count always suffices).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct SmallFace {
+    /// 1 + face index.
+    id: u16,
+    /// Bounding box x0, y0, x1, y1 in sub-pixel units.
+    bbox: [i32; 4],
+}
 
 /// The grey levels of a frame with anti-aliased face edges, for
 /// [`ZBufferRenderer::render_grey`](super::ZBufferRenderer::render_grey). Levels are
@@ -220,14 +231,14 @@ pub(crate) struct GreyCompose<'p, G, const POLY: usize> {
     palette: &'p G,
     slots: [Slot<POLY>; SLOTS],
     next: usize,
-    /// The band's small faces (see [`THIN_PX`]): id and bounding box x0, y0, x1, y1
-    /// in sub-pixel units.
-    small: Vec<(u16, [i32; 4]), SMALL>,
+    /// The band's small faces (see [`THIN_PX`]), the first `small_len` of the lent list.
+    small: &'p mut [SmallFace],
+    small_len: usize,
 }
 
 impl<'p, G: GreyPalette, const POLY: usize> GreyCompose<'p, G, POLY> {
-    /// No face set up yet.
-    pub fn new(palette: &'p G) -> Self {
+    /// No face set up yet; `small` is the lent list of a band's small faces.
+    pub fn new(palette: &'p G, small: &'p mut [SmallFace]) -> Self {
         Self {
             palette,
             slots: [const {
@@ -240,7 +251,8 @@ impl<'p, G: GreyPalette, const POLY: usize> GreyCompose<'p, G, POLY> {
                 }
             }; SLOTS],
             next: 0,
-            small: Vec::new(),
+            small,
+            small_len: 0,
         }
     }
 
@@ -253,8 +265,8 @@ impl<'p, G: GreyPalette, const POLY: usize> GreyCompose<'p, G, POLY> {
         drawn: &[u32],
         top: u16,
         end: u16,
-    ) {
-        self.small.clear();
+    ) -> Result<(), Error> {
+        let mut found = 0usize;
         let thin = THIN_PX << ctx.s;
         let (band_lo, band_hi) = (i32::from(top) << ctx.s, i32::from(end) << ctx.s);
         for f in 0..ctx.mesh.face_count() {
@@ -277,9 +289,18 @@ impl<'p, G: GreyPalette, const POLY: usize> GreyCompose<'p, G, POLY> {
             }
             let small = b[2].saturating_sub(b[0]) < thin || b[3].saturating_sub(b[1]) < thin;
             if outside == 0 && small && b[3] > band_lo && b[1] < band_hi {
-                let _ = self.small.push(((f + 1) as u16, b));
+                if let Some(slot) = self.small.get_mut(found) {
+                    *slot = SmallFace {
+                        id: (f + 1) as u16,
+                        bbox: b,
+                    };
+                }
+                found += 1;
             }
         }
+        super::need(found, self.small.len())?;
+        self.small_len = found;
+        Ok(())
     }
 
     /// Face `id` (1 + index) at pixel (`i`, `j`): `None` when it covers no sub-sample
@@ -335,36 +356,43 @@ fn neighbourhood(
     rows: [&[u16]; 3],
     x: usize,
     drawn: &[u32],
-    small: &[(u16, i32, i32)],
+    small: &[SmallFace],
+    y: u16,
     s: u32,
-) -> Option<Vec<u16, CANDIDATES>> {
+) -> Result<Option<Vec<u16, CANDIDATES>>, Error> {
     let centre = rows[1].get(x).copied().unwrap_or(0);
     let mut ids: Vec<u16, CANDIDATES> = Vec::new();
     let mut mixed = false;
-    let add = |id: u16, ids: &mut Vec<u16, CANDIDATES>| {
+    let add = |id: u16, ids: &mut Vec<u16, CANDIDATES>| -> Result<(), Error> {
         if !ids.contains(&id) {
             // Insertion in order: a few ids.
             let at = ids.iter().position(|&k| k > id).unwrap_or(ids.len());
-            let _ = ids.insert(at, id);
+            ids.insert(at, id).map_err(|_| Error::CapacityExceeded {
+                needed: CANDIDATES + 1,
+                capacity: CANDIDATES,
+            })?;
         }
+        Ok(())
     };
     for row in rows {
         for n in x.saturating_sub(1)..=x + 1 {
             let Some(&id) = row.get(n) else { continue };
             mixed |= id != centre;
             if id != 0 && bit(drawn, usize::from(id - 1)) {
-                add(id, &mut ids);
+                add(id, &mut ids)?;
             }
         }
     }
     let (lo, hi) = ((x as i32) << s, (x as i32 + 1) << s);
-    for &(id, x0, x1) in small {
-        if x1 > lo && x0 < hi {
-            mixed |= id != centre;
-            add(id, &mut ids);
+    let (top, bottom) = (i32::from(y) << s, (i32::from(y) + 1) << s);
+    for f in small {
+        let [x0, y0, x1, y1] = f.bbox;
+        if x1 > lo && x0 < hi && y1 > top && y0 < bottom {
+            mixed |= f.id != centre;
+            add(f.id, &mut ids)?;
         }
     }
-    mixed.then_some(ids)
+    Ok(mixed.then_some(ids))
 }
 
 impl<K: SpanSink, G: GreyPalette<Color = K::Color>, const POLY: usize> Compose<K>
@@ -390,7 +418,8 @@ impl<K: SpanSink, G: GreyPalette<Color = K::Color>, const POLY: usize> Compose<K
                 .map_err(Error::Target);
         }
         let background = self.palette.background();
-        self.find_small(ctx, vertices, drawn, band.top, band.top + band.rows);
+        self.find_small(ctx, vertices, drawn, band.top, band.top + band.rows)
+            .map_err(Error::widen)?;
         let mut spans = 0u32;
         let mut level_of: (u16, u8) = (0, 0);
         for r in 0..band.rows {
@@ -402,11 +431,6 @@ impl<K: SpanSink, G: GreyPalette<Color = K::Color>, const POLY: usize> Compose<K
             ];
             let (visible, hidden) = masks.row(r);
             probe.row(y, rows[1], visible, hidden);
-            let (lo, hi) = (i32::from(y) << ctx.s, (i32::from(y) + 1) << ctx.s);
-            let mut small: Vec<(u16, i32, i32), ROW_SMALL> = Vec::new();
-            for &(id, b) in self.small.iter().filter(|(_, b)| b[3] > lo && b[1] < hi) {
-                let _ = small.push((id, b[0], b[2]));
-            }
             let line_word = |k: usize| -> u32 {
                 let v = visible.get(k).copied().unwrap_or(0);
                 let h = hidden.get(k).copied().unwrap_or(0);
@@ -438,7 +462,16 @@ impl<K: SpanSink, G: GreyPalette<Color = K::Color>, const POLY: usize> Compose<K
                     let x16 = x as u16;
                     let color = if word & (1 << n) != 0 {
                         Some(self.palette.line())
-                    } else if let Some(ids) = neighbourhood(rows, x, drawn, &small, ctx.s) {
+                    } else if let Some(ids) = neighbourhood(
+                        rows,
+                        x,
+                        drawn,
+                        self.small.get(..self.small_len).unwrap_or(&[]),
+                        y,
+                        ctx.s,
+                    )
+                    .map_err(Error::widen)?
+                    {
                         let (i, j) = (i64::from(x16), i64::from(y));
                         let mut cands: Vec<Candidate, CANDIDATES> = Vec::new();
                         for &c in &ids {
@@ -446,6 +479,7 @@ impl<K: SpanSink, G: GreyPalette<Color = K::Color>, const POLY: usize> Compose<K
                                 .candidate(ctx, vertices, c, i, j)
                                 .map_err(Error::widen)?
                             {
+                                // At most one candidate per id: within capacity.
                                 let _ = cands.push(cand);
                             }
                         }

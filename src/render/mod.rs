@@ -25,7 +25,7 @@ mod zbuffer;
 use embedded_graphics_core::pixelcolor::BinaryColor;
 use heapless::Vec;
 
-pub use abuffer::{GreyPalette, GreyShades};
+pub use abuffer::{GreyPalette, GreyShades, SmallFace};
 pub use codefill::{CodeFillRenderer, CodeWorkspace, DepthOrder, RowCodes, Visibility};
 pub use compose::{FrameProbe, MonoPalette, Palette, SolidPalette};
 pub use idpass::IdWorkspace;

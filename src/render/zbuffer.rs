@@ -10,7 +10,7 @@ use embedded_graphics_core::pixelcolor::{BinaryColor, PixelColor};
 use fixed::types::extra::LeEqU32;
 use heapless::Vec;
 
-use super::abuffer::{GreyCompose, GreyPalette, GREY_MIN_BITS};
+use super::abuffer::{GreyCompose, GreyPalette, SmallFace, GREY_MIN_BITS};
 use super::compose::{self, Compose, FrameProbe, Palette};
 use super::lines::{line_pass, LineMasks};
 use super::transform::{ProjectedVertex, ScreenVertex};
@@ -87,7 +87,11 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
     ///
     /// Needs S >= 2 sub-pixel bits, so that the sub-samples (at odd eighths of a
     /// pixel) lie on the half sub-pixel grid of the coverage test:
-    /// [`Error::SubpixelTooCoarse`] otherwise.
+    /// [`Error::SubpixelTooCoarse`] otherwise. `small` holds a band's faces less than
+    /// three pixels wide or high (found by bounding box, since the face ids may not
+    /// show them); more in one band than `small.len()` is
+    /// [`Error::CapacityExceeded`] with the count (the mesh's face count always
+    /// suffices).
     #[allow(clippy::too_many_arguments)]
     pub fn render_grey<D: Depth, K: SpanSink, G: GreyPalette<Color = K::Color>, R: FrameProbe>(
         &mut self,
@@ -96,6 +100,7 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
         camera: &Camera,
         settings: &Settings,
         ws: &mut Workspace<'_, D>,
+        small: &mut [SmallFace],
         palette: &G,
         sink: &mut K,
         probe: &mut R,
@@ -110,7 +115,7 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
                 needed: GREY_MIN_BITS,
             });
         }
-        let mut grey = GreyCompose::<G, POLY>::new(palette);
+        let mut grey = GreyCompose::<G, POLY>::new(palette, small);
         self.render_with(mesh, edges, camera, settings, ws, &mut grey, sink, probe)
     }
 

@@ -207,8 +207,10 @@ fn run() -> Result<(), Fail> {
             }
         }
     }
-    let asked_other =
-        o.hash || o.out.is_some() || o.ids.is_some() || o.lines.is_some()
+    let asked_other = o.hash
+        || o.out.is_some()
+        || o.ids.is_some()
+        || o.lines.is_some()
         || o.pick.is_some()
         || o.grey.is_some();
     if o.stats || !asked_other {
