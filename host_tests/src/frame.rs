@@ -91,17 +91,21 @@ pub enum EngineSpec {
     /// A BSP tree built once for the mesh, walked per view; its fragments painted far
     /// to near.
     Bsp,
+    /// One fixed-point ray per pixel centre through a bounding-volume hierarchy built
+    /// per frame.
+    Raycast,
 }
 
 impl EngineSpec {
     /// Every engine, in the order the `--engine` help lists them.
-    pub const ALL: [EngineSpec; 6] = [
+    pub const ALL: [EngineSpec; 7] = [
         EngineSpec::CodeFill,
         EngineSpec::CodeFillCrossings,
         EngineSpec::Scanline,
         EngineSpec::ZBuffer,
         EngineSpec::Painter,
         EngineSpec::Bsp,
+        EngineSpec::Raycast,
     ];
 
     /// The engine's `--engine` name.
@@ -113,6 +117,7 @@ impl EngineSpec {
             EngineSpec::ZBuffer => "zbuffer",
             EngineSpec::Painter => "painter",
             EngineSpec::Bsp => "bsp",
+            EngineSpec::Raycast => "raycast",
         }
     }
 

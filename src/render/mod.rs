@@ -15,6 +15,7 @@ mod coverage;
 mod idpass;
 mod lines;
 mod painter;
+mod raycast;
 mod transform;
 mod zband;
 mod zbuffer;
@@ -26,6 +27,9 @@ pub use codefill::{CodeFillRenderer, CodeWorkspace, DepthOrder, RowCodes, Visibi
 pub use compose::{FrameProbe, MonoPalette, Palette, SolidPalette};
 pub use idpass::IdWorkspace;
 pub use painter::{PaintOrder, PainterRenderer};
+pub use raycast::{
+    BvhNode, RayFace, RaycastFigures, RaycastRenderer, RaycastSizes, RaycastStorage,
+};
 pub use transform::{ClipVertex, ProjectedVertex, ScreenVertex};
 pub use zband::Depth;
 pub use zbuffer::ZBufferRenderer;
