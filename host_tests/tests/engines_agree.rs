@@ -5,6 +5,11 @@
 //!   packed picture). It resolves overlapping faces from their planes exactly as the
 //!   Z-buffer receives them (face order, ties to the lower index), so no tolerance
 //!   is owed.
+//! - `raycast` (one ray per pixel centre through a per-frame bounding-volume
+//!   hierarchy) against the Z-buffer (32-bit depth): the same frame, pixel for pixel.
+//!   A ray meets a face where `covers_centre` (the scan converter's decision) says so,
+//!   at the plane nearness the Z-buffer stores, and decides among the tie-closed
+//!   nearest hits by the Z-buffer's rule in index order, so no tolerance is owed.
 //! - `codefill` (a BSP tree's depth order, weight-1 codes) with both row
 //!   representations: the same frame as each other, pixel for pixel. Against the
 //!   Z-buffer its face ids differ where two faces are within a tie of each other
@@ -310,6 +315,60 @@ fn code_fill_in_depth_order_is_as_faithful_as_the_z_buffer_on_random_scenes() {
         }
     }
     assert!(fraction <= 0.006, "{differ} of {covered} ids differ");
+    assert!(
+        failures.is_empty(),
+        "{} failures:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
+
+#[test]
+fn raycast_draws_the_z_buffer_frame_on_random_scenes() {
+    let mut failures = Vec::new();
+    let (mut rendered, mut covered, mut fallbacks, mut tests) = (0, 0usize, 0u64, 0u64);
+    for (k, sc) in scenes().iter().enumerate() {
+        let z = render_frame(
+            &sc.mesh,
+            &sc.cam,
+            &with_engine(&sc.spec, EngineSpec::ZBuffer),
+        );
+        let r = render_frame(
+            &sc.mesh,
+            &sc.cam,
+            &with_engine(&sc.spec, EngineSpec::Raycast),
+        );
+        match (z, r) {
+            (Ok(z), Ok(r)) => {
+                rendered += 1;
+                covered += z.ids.iter().filter(|&&id| id != 0).count();
+                fallbacks += stat(&r, "ray_fallbacks");
+                tests += stat(&r, "ray_face_tests");
+                let d = differing(&z, &r);
+                if d != (0, 0, 0) {
+                    let spec = &sc.spec;
+                    failures.push(format!(
+                        "scene {k} ({}x{}, S {}, band {}, {:?}): {} ids, {} line pixels, {} bytes differ",
+                        spec.width, spec.height, spec.subpixel, spec.band, spec.cull, d.0, d.1, d.2
+                    ));
+                }
+            }
+            (Err(a), Err(b)) if a == b => {}
+            (z, r) => failures.push(format!(
+                "scene {k}: the engines disagree on failing: {:?} / {:?}",
+                z.err(),
+                r.err()
+            )),
+        }
+    }
+    println!(
+        "{rendered} scenes, {covered} face pixels, {tests} ray-face tests, {fallbacks} pixels decided exhaustively"
+    );
+    assert!(rendered >= 290, "only {rendered} scenes rendered");
+    assert!(
+        covered > 500_000,
+        "the scenes cover too little: {covered} pixels"
+    );
     assert!(
         failures.is_empty(),
         "{} failures:\n{}",
