@@ -397,3 +397,50 @@ fn a_deep_soup_draws_the_z_buffer_frame() {
         assert!(fig.face_tests < 64 * 48 * 400 / 20, "{fig:?}");
     }
 }
+
+/// The pruning argument on random hit sets: kept in any order (some set aside as a
+/// pruned node would be), the tie-closed nearest hits decide as the Z-buffer's rule
+/// over every hit in index order, unless the trace reports it cannot tell (then the
+/// pixel goes to the exhaustive pass).
+#[test]
+fn the_tie_closed_nearest_hits_decide_as_all_hits_do() {
+    let mut rng = Lcg(11);
+    let (mut decided, mut undecided) = (0, 0);
+    for _ in 0..20_000 {
+        let n = 1 + (rng.next() * 14.0) as usize;
+        let mut hits: Vec<Hit> = (0..n)
+            .map(|k| Hit {
+                face: k as u16,
+                entry: k as u32,
+                q: 1000 + (rng.next() * 200.0) as u32,
+                tie: (rng.next() * 40.0) as u32,
+            })
+            .collect();
+        let want = fold(hits.iter().copied()).map(|h| h.face);
+        // Shuffle: the order a trace meets them in.
+        for i in (1..n).rev() {
+            let j = (rng.next() * (i + 1) as f32) as usize % (i + 1);
+            hits.swap(i, j);
+        }
+        let mut c = Candidates::new();
+        for h in &hits {
+            // As the trace does: a hit below the current floor is pruned.
+            if i64::from(h.q) < c.floor {
+                c.lose(h.q);
+            } else {
+                c.insert(*h);
+            }
+        }
+        if c.lost >= c.floor {
+            undecided += 1;
+            continue;
+        }
+        decided += 1;
+        assert_eq!(c.winner().map(|h| h.face), want, "{hits:?}");
+    }
+    std::println!("{decided} decided, {undecided} to the exhaustive pass");
+    assert!(
+        decided > 10_000 && undecided > 100,
+        "{decided} / {undecided}"
+    );
+}
