@@ -219,6 +219,7 @@ pub(crate) fn render_raycast<Frac: LeEqU32>(
         ("bvh_nodes".into(), u64::from(figures.nodes)),
         ("ray_face_tests".into(), figures.face_tests),
         ("ray_fallbacks".into(), u64::from(figures.fallbacks)),
+        ("ray_tree_pixels".into(), figures.tree_pixels),
     ]);
     Ok(frame)
 }

@@ -19,6 +19,12 @@
 //! partial H can end higher than the final one, the largest bound set aside is
 //! remembered, and when it reaches the final floor the pixel is decided again by an
 //! exhaustive pass in index order (counted in [`RaycastFigures::fallbacks`]).
+//!
+//! Coherence: rays are cast in 8x8 tiles. One walk of the tree lists the faces
+//! whose boxes meet the tile, sorted by their largest nearness; each pixel walks
+//! that list until a face's bound falls below the floor (then the floor is final).
+//! A tile meeting more faces than the list holds is traced pixel by pixel through
+//! the tree, nearest child first, the previous pixel's face tried first.
 
 use core::marker::PhantomData;
 
@@ -44,6 +50,13 @@ const LEAF: usize = 4;
 /// tree over at most 65 535 faces is at most 16 levels deep below the root and the
 /// depth-first stack holds at most one entry per level plus one.
 const STACK: usize = 40;
+
+/// Pixels on a side of the tiles traced together: one walk of the tree lists the
+/// faces that meet the tile, and each pixel of the tile walks that list.
+const TILE: u16 = 8;
+
+/// Most faces a tile's list holds; a tile meeting more is traced pixel by pixel.
+const TILE_FACES: usize = 48;
 
 /// Covering faces a trace keeps (the nearest ones, within ties of each other). More
 /// than this at one pixel sends the pixel to the exhaustive pass.
@@ -144,6 +157,9 @@ pub struct RaycastFigures {
     pub fallbacks: u32,
     /// Coverage tests made (faces whose box held the pixel centre).
     pub face_tests: u64,
+    /// Pixels traced through the tree one by one (their tile met too many faces
+    /// to list); the others walked their tile's face list.
+    pub tree_pixels: u64,
 }
 
 /// The ray-casting engine: S = `Frac` sub-pixel bits, `POLY` vertices per clipped
@@ -170,6 +186,7 @@ impl<Frac: LeEqU32, const POLY: usize> RaycastRenderer<Frac, POLY> {
                 nodes: 0,
                 fallbacks: 0,
                 face_tests: 0,
+                tree_pixels: 0,
             },
             _frac: PhantomData,
         }
@@ -532,6 +549,74 @@ impl<const POLY: usize> Cast<'_, POLY> {
         Ok(c.winner())
     }
 
+    /// The face records whose boxes meet the tile `[x0, y0, x1, y1]` (inclusive),
+    /// nearest bound first, into `out`; false when they do not fit (the tile's
+    /// pixels are then traced through the tree one by one).
+    fn tile_faces(&self, tile: [u16; 4], out: &mut Vec<u32, TILE_FACES>) -> bool {
+        let [x0, y0, x1, y1] = tile;
+        let meets = |a: [u16; 4]| a[0] <= x1 && x0 <= a[2] && a[1] <= y1 && y0 <= a[3];
+        out.clear();
+        let mut stack: Vec<u32, STACK> = Vec::new();
+        if self.node_count > 0 {
+            let _ = stack.push(0);
+        }
+        while let Some(i) = stack.pop() {
+            let Some(node) = self.nodes.get(i as usize) else {
+                continue;
+            };
+            if !meets([node.x0, node.y0, node.x1, node.y1]) {
+                continue;
+            }
+            if node.count == 0 {
+                if stack.push(node.index).is_err() || stack.push(node.index + 1).is_err() {
+                    return false;
+                }
+                continue;
+            }
+            for k in node.index..node.index + node.count {
+                let Some(f) = self.faces.get(k as usize) else {
+                    continue;
+                };
+                if meets([f.x0, f.y0, f.x1, f.y1]) && out.push(k).is_err() {
+                    return false;
+                }
+            }
+        }
+        let bound = |k: &u32| self.faces.get(*k as usize).map_or(0, |f| f.plane.max_q());
+        out.sort_unstable_by_key(|k| core::cmp::Reverse(bound(k)));
+        true
+    }
+
+    /// [`trace`](Self::trace) over a tile's face list (nearest bound first): the
+    /// first face whose bound is below the floor ends the walk, so the floor is final
+    /// and only an overflow of the kept hits can leave the pixel undecided.
+    fn trace_list(
+        &mut self,
+        ctx: &FrameCtx<'_, '_>,
+        vertices: &[ProjectedVertex],
+        x: u16,
+        y: u16,
+        list: &[u32],
+        poly: &mut Vec<ScreenVertex, POLY>,
+    ) -> Result<Option<Hit>, Error> {
+        let mut c = Candidates::new();
+        for &k in list {
+            let bound = self.faces.get(k as usize).map_or(0, |f| f.plane.max_q());
+            if i64::from(bound) < c.floor {
+                c.lose(bound);
+                break;
+            }
+            if let Some(h) = self.hit(ctx, vertices, k as usize, x, y, poly)? {
+                c.insert(h);
+            }
+        }
+        if c.lost >= c.floor && !c.hits.is_empty() {
+            self.figures.fallbacks += 1;
+            return self.exhaustive(ctx, vertices, x, y, poly);
+        }
+        Ok(c.winner())
+    }
+
     /// The Z-buffer's decision at pixel (x, y) over every face record, taken in
     /// index order by repeated scans (no storage; only for the rare pixel the
     /// pruned trace cannot decide).
@@ -627,20 +712,40 @@ impl<const POLY: usize> IdPass for Cast<'_, POLY> {
             return Ok(0);
         };
         let mut poly: Vec<ScreenVertex, POLY> = Vec::new();
-        let mut runs = 0;
-        for y in band.first..band.first + band.held {
-            if y < root.y0 || y > root.y1 {
-                continue;
-            }
-            let mut hint = None;
-            let mut last = 0;
-            for x in root.x0..=root.x1 {
-                let hit = self.trace(ctx, vertices, x, y, hint, &mut poly)?;
-                hint = hit.map(|h| h.entry);
-                let id = hit.map_or(0, |h| h.face + 1);
-                if let Some(slot) = band.row_mut(y).and_then(|r| r.get_mut(usize::from(x))) {
-                    *slot = id;
+        let mut list: Vec<u32, TILE_FACES> = Vec::new();
+        let rows = band.first.max(root.y0)..(band.first + band.held).min(root.y1 + 1);
+        let mut ty = rows.start;
+        while ty < rows.end {
+            let ty1 = (ty + TILE).min(rows.end) - 1;
+            let mut tx = root.x0;
+            while tx <= root.x1 {
+                let tx1 = (tx + TILE - 1).min(root.x1);
+                let listed = self.tile_faces([tx, ty, tx1, ty1], &mut list);
+                for y in ty..=ty1 {
+                    let mut hint = None;
+                    for x in tx..=tx1 {
+                        let hit = if listed {
+                            self.trace_list(ctx, vertices, x, y, &list, &mut poly)?
+                        } else {
+                            self.figures.tree_pixels += 1;
+                            self.trace(ctx, vertices, x, y, hint, &mut poly)?
+                        };
+                        hint = hit.map(|h| h.entry);
+                        if let Some(slot) = band.row_mut(y).and_then(|r| r.get_mut(usize::from(x)))
+                        {
+                            *slot = hit.map_or(0, |h| h.face + 1);
+                        }
+                    }
                 }
+                tx = tx1 + 1;
+            }
+            ty = ty1 + 1;
+        }
+        // Runs of one face along the rows, for the statistics.
+        let mut runs = 0;
+        for y in rows {
+            let mut last = 0;
+            for &id in band.row(y) {
                 runs += u32::from(id != 0 && id != last);
                 last = id;
             }

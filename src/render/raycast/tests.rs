@@ -393,6 +393,11 @@ fn a_deep_soup_draws_the_z_buffer_frame() {
         let differ = ids.iter().zip(&zids).filter(|(a, b)| a != b).count();
         assert_eq!(differ, 0, "band {band}: {differ} pixels differ");
         assert!(fig.nodes > 100, "a deep tree: {fig:?}");
+        // Both ways of tracing are taken: tile lists and the tree.
+        assert!(
+            fig.tree_pixels > 0 && fig.tree_pixels < 64 * 48 / 2,
+            "{fig:?}"
+        );
         // The pruned trace tests far fewer faces than there are faces.
         assert!(fig.face_tests < 64 * 48 * 400 / 20, "{fig:?}");
     }
