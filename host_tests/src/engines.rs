@@ -220,6 +220,7 @@ pub(crate) fn render_raycast<Frac: LeEqU32>(
         ("ray_face_tests".into(), figures.face_tests),
         ("ray_fallbacks".into(), u64::from(figures.fallbacks)),
         ("ray_tree_pixels".into(), figures.tree_pixels),
+        ("ray_clipped_faces".into(), u64::from(figures.clipped_faces)),
     ]);
     Ok(frame)
 }

@@ -90,9 +90,11 @@ impl BvhNode {
 /// each test; an unclipped face's polygon is read from the vertex cache through the
 /// mesh's indices, which costs a copy of a few vertices).
 ///
-/// Measured on suzanne (400x240): the clipped case never arises for a fitted camera;
-/// caching clipped polygons would cost `POLY` screen vertices per face for the rare
-/// near-plane cut, so they are recomputed.
+/// Measured (400x240, fitted camera): suzanne makes 51 thousand coverage tests a
+/// frame and teapot 94 thousand, with no clipped face in either
+/// ([`RaycastFigures::clipped_faces`]); a cache of clipped polygons would cost
+/// `POLY` screen vertices per face for the rare near-plane cut, so they are
+/// recomputed, and unclipped ones are only the mesh's indices into the vertex cache.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct RayFace {
     plane: RowPlane,
@@ -157,6 +159,8 @@ pub struct RaycastFigures {
     pub fallbacks: u32,
     /// Coverage tests made (faces whose box held the pixel centre).
     pub face_tests: u64,
+    /// Faces of the hierarchy whose polygon is clipped (cut again at each test).
+    pub clipped_faces: u32,
     /// Pixels traced through the tree one by one (their tile met too many faces
     /// to list); the others walked their tile's face list.
     pub tree_pixels: u64,
@@ -187,6 +191,7 @@ impl<Frac: LeEqU32, const POLY: usize> RaycastRenderer<Frac, POLY> {
                 fallbacks: 0,
                 face_tests: 0,
                 tree_pixels: 0,
+                clipped_faces: 0,
             },
             _frac: PhantomData,
         }
@@ -693,6 +698,7 @@ impl<const POLY: usize> IdPass for Cast<'_, POLY> {
                 clipped,
             };
             n += 1;
+            self.figures.clipped_faces += u32::from(clipped);
         }
         self.face_count = n;
         self.build(n)?;
