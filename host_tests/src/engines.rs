@@ -7,8 +7,8 @@ use std::time::Instant;
 use fixed::types::extra::LeEqU32;
 use pbuffer::mesh::Mesh;
 use pbuffer::render::{
-    IdWorkspace, PaintOrder, PainterRenderer, ProjectedVertex, WarnockArea, WarnockFace,
-    WarnockRenderer, WarnockSizes, WarnockStorage,
+    BvhNode, IdWorkspace, PaintOrder, PainterRenderer, ProjectedVertex, RayFace, RaycastRenderer,
+    RaycastStorage, WarnockArea, WarnockFace, WarnockRenderer, WarnockSizes, WarnockStorage,
 };
 use pbuffer::{DepthOrder, MonoPalette};
 
@@ -229,4 +229,71 @@ pub(crate) fn render_warnock<Frac: LeEqU32>(
         build_bytes,
         time_us,
     ))
+}
+
+/// `raycast`: one ray per pixel centre through a bounding-volume hierarchy built per
+/// frame in lent storage (counted in the working RAM).
+pub(crate) fn render_raycast<Frac: LeEqU32>(
+    data: &MeshData,
+    cam: &CameraSpec,
+    spec: &RenderSpec,
+) -> Result<Frame, String> {
+    let arrays = MeshArrays::new(data);
+    let mesh = Mesh::new(&arrays.vertices, &arrays.indices, &arrays.offsets)
+        .map_err(|e| format!("mesh: {e}"))?;
+    let mut storage = AdjacencyStorage::new(&arrays);
+    let build_bytes = storage.build_bytes();
+    let adjacency = storage.build(&mesh, spec.crease_deg)?;
+    let camera = camera(cam)?;
+    let settings = settings(spec)?;
+    let mut buffers = IdBuffers::new(
+        spec,
+        mesh.vertices().len(),
+        mesh.face_count(),
+        adjacency.edges().len(),
+    );
+    let sizes = RaycastStorage::sizes(mesh.face_count());
+    let mut nodes = vec![BvhNode::default(); sizes.nodes];
+    let mut faces = vec![RayFace::default(); sizes.faces];
+    let mut ws = buffers.workspace();
+    let mut rays = RaycastStorage {
+        nodes: &mut nodes,
+        faces: &mut faces,
+    };
+    let lent = ws.bytes() + std::mem::size_of_val(adjacency.edges()) + rays.bytes();
+    let mut renderer = Box::new(RaycastRenderer::<Frac, POLY>::new());
+    let (w, h) = (spec.width, spec.height);
+    let mut target = PackedFrame::new(w, h);
+    let mut probe = Collect::new(w, h);
+    let start = Instant::now();
+    let mut result = None;
+    measured_region(&mut || {
+        result = Some(renderer.render(
+            &mesh,
+            &adjacency,
+            &camera,
+            &settings,
+            &mut ws,
+            &mut rays,
+            &MonoPalette::default(),
+            &mut target,
+            &mut probe,
+        ));
+    });
+    let stats = result
+        .expect("the measured region ran")
+        .map_err(|e| format!("render: {e}"))?;
+    let time_us = start.elapsed().as_micros() as u64;
+    let working = lent + std::mem::size_of::<RaycastRenderer<Frac, POLY>>();
+    let figures = renderer.figures();
+    let mut frame = frame(w, h, probe, target, &stats, working, build_bytes, time_us);
+    frame.stats.extend([
+        ("bvh_faces".into(), u64::from(figures.faces)),
+        ("bvh_nodes".into(), u64::from(figures.nodes)),
+        ("ray_face_tests".into(), figures.face_tests),
+        ("ray_fallbacks".into(), u64::from(figures.fallbacks)),
+        ("ray_tree_pixels".into(), figures.tree_pixels),
+        ("ray_clipped_faces".into(), u64::from(figures.clipped_faces)),
+    ]);
+    Ok(frame)
 }

@@ -94,11 +94,14 @@ pub enum EngineSpec {
     /// Warnock's area subdivision: areas split down to pixels, each decided as the
     /// Z-buffer (32-bit depth) decides it.
     Warnock,
+    /// One fixed-point ray per pixel centre through a bounding-volume hierarchy built
+    /// per frame.
+    Raycast,
 }
 
 impl EngineSpec {
     /// Every engine, in the order the `--engine` help lists them.
-    pub const ALL: [EngineSpec; 7] = [
+    pub const ALL: [EngineSpec; 8] = [
         EngineSpec::CodeFill,
         EngineSpec::CodeFillCrossings,
         EngineSpec::Scanline,
@@ -106,6 +109,7 @@ impl EngineSpec {
         EngineSpec::Painter,
         EngineSpec::Bsp,
         EngineSpec::Warnock,
+        EngineSpec::Raycast,
     ];
 
     /// The engine's `--engine` name.
@@ -118,6 +122,7 @@ impl EngineSpec {
             EngineSpec::Painter => "painter",
             EngineSpec::Bsp => "bsp",
             EngineSpec::Warnock => "warnock",
+            EngineSpec::Raycast => "raycast",
         }
     }
 

@@ -267,6 +267,9 @@ fn render_s<Frac: LeEqU32>(
     if spec.engine == EngineSpec::Warnock {
         return crate::engines::render_warnock::<Frac>(mesh, cam, spec);
     }
+    if spec.engine == EngineSpec::Raycast {
+        return crate::engines::render_raycast::<Frac>(mesh, cam, spec);
+    }
     match spec.depth_bits {
         16 => render_sd::<Frac, u16>(mesh, cam, spec),
         32 => render_sd::<Frac, u32>(mesh, cam, spec),

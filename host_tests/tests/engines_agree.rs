@@ -17,6 +17,11 @@
 //!   over the run (0.42 % measured). Both are compared with the f64 reference on
 //!   every scene, and over the run code fill may not have more holes, wrong faces,
 //!   depth-order errors or far id differences than the Z-buffer (+2).
+//! - `raycast` (one ray per pixel centre through a per-frame bounding-volume
+//!   hierarchy) against the Z-buffer (32-bit depth): the same frame, pixel for pixel.
+//!   A ray meets a face where `covers_centre` (the scan converter's decision) says so,
+//!   at the plane nearness the Z-buffer stores, and decides among the tie-closed
+//!   nearest hits by the Z-buffer's rule in index order, so no tolerance is owed.
 //!
 //! Scenes: random boxes (many interpenetrating), random triangle soups (open,
 //! crossing, coplanar pairs), random cameras from every side, perspective and
@@ -404,6 +409,60 @@ fn painting_a_bsp_order_draws_the_code_fill_frame_on_random_scenes() {
     }
     println!("{rendered} scenes");
     assert!(rendered >= 290, "only {rendered} scenes rendered");
+    assert!(
+        failures.is_empty(),
+        "{} failures:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
+
+#[test]
+fn raycast_draws_the_z_buffer_frame_on_random_scenes() {
+    let mut failures = Vec::new();
+    let (mut rendered, mut covered, mut fallbacks, mut tests) = (0, 0usize, 0u64, 0u64);
+    for (k, sc) in scenes().iter().enumerate() {
+        let z = render_frame(
+            &sc.mesh,
+            &sc.cam,
+            &with_engine(&sc.spec, EngineSpec::ZBuffer),
+        );
+        let r = render_frame(
+            &sc.mesh,
+            &sc.cam,
+            &with_engine(&sc.spec, EngineSpec::Raycast),
+        );
+        match (z, r) {
+            (Ok(z), Ok(r)) => {
+                rendered += 1;
+                covered += z.ids.iter().filter(|&&id| id != 0).count();
+                fallbacks += stat(&r, "ray_fallbacks");
+                tests += stat(&r, "ray_face_tests");
+                let d = differing(&z, &r);
+                if d != (0, 0, 0) {
+                    let spec = &sc.spec;
+                    failures.push(format!(
+                        "scene {k} ({}x{}, S {}, band {}, {:?}): {} ids, {} line pixels, {} bytes differ",
+                        spec.width, spec.height, spec.subpixel, spec.band, spec.cull, d.0, d.1, d.2
+                    ));
+                }
+            }
+            (Err(a), Err(b)) if a == b => {}
+            (z, r) => failures.push(format!(
+                "scene {k}: the engines disagree on failing: {:?} / {:?}",
+                z.err(),
+                r.err()
+            )),
+        }
+    }
+    println!(
+        "{rendered} scenes, {covered} face pixels, {tests} ray-face tests, {fallbacks} pixels decided exhaustively"
+    );
+    assert!(rendered >= 290, "only {rendered} scenes rendered");
+    assert!(
+        covered > 500_000,
+        "the scenes cover too little: {covered} pixels"
+    );
     assert!(
         failures.is_empty(),
         "{} failures:\n{}",

@@ -5,7 +5,8 @@
 //! (mode `dashed`) must stay within the misclassified / missing limits. Each scene runs
 //! with the code-fill engine (full frame, and 8-row bands with bit-sliced rows) and the
 //! Z-buffer engine (a full-frame band with 32-bit depth, and 8-row bands with 16-bit
-//! depth), and Warnock's area subdivision (a full-frame band and 8-row bands).
+//! depth), Warnock's area subdivision and the ray-casting engine (each a full-frame
+//! band and 8-row bands).
 //! One report line per scene: `cargo test --release -p host_tests --test
 //! pipeline_vs_reference -- --nocapture`.
 
@@ -54,6 +55,8 @@ fn run_scene(
             (EngineSpec::ZBuffer, 8, 16),
             (EngineSpec::Warnock, height, 32),
             (EngineSpec::Warnock, 8, 32),
+            (EngineSpec::Raycast, height, 32),
+            (EngineSpec::Raycast, 8, 32),
         ] {
             let spec = RenderSpec {
                 engine,

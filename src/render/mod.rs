@@ -17,6 +17,7 @@ mod idpass;
 mod lines;
 mod painter;
 mod pick;
+mod raycast;
 mod transform;
 mod warnock;
 mod zband;
@@ -31,6 +32,9 @@ pub use compose::{FrameProbe, MonoPalette, Palette, SolidPalette};
 pub use idpass::IdWorkspace;
 pub use painter::{PaintOrder, PainterRenderer};
 pub use pick::{pick, Pick, PickWorkspace, PickedEdge};
+pub use raycast::{
+    BvhNode, RayFace, RaycastFigures, RaycastRenderer, RaycastSizes, RaycastStorage,
+};
 pub use transform::{ClipVertex, ProjectedVertex, ScreenVertex};
 pub use warnock::{WarnockArea, WarnockFace, WarnockRenderer, WarnockSizes, WarnockStorage};
 pub use zband::Depth;

@@ -249,6 +249,24 @@ impl RowPlane {
     pub fn step(&mut self) {
         self.row_q = self.row_q.wrapping_add(self.dq_dy);
     }
+
+    /// Nearness at the centre of pixel (`x`, `y`) of a plane made for row 0
+    /// (`row_plane(0)`): the same value as `at(x)` after `y` steps, and as
+    /// [`FaceSpans`] gives the pixel (no wrap, as in [`at`](Self::at)).
+    #[inline]
+    pub fn at_xy(&self, x: u16, y: u16) -> u32 {
+        let q = self
+            .row_q
+            .wrapping_add(self.dq_dy.wrapping_mul(i64::from(y)))
+            .wrapping_add(self.dq_dx.wrapping_mul(i64::from(x)));
+        (q.clamp(self.q_min, self.q_max) >> STEP_BITS) as u32
+    }
+
+    /// The largest nearness the plane takes anywhere (its vertices' largest).
+    #[inline]
+    pub fn max_q(&self) -> u32 {
+        (self.q_max >> STEP_BITS) as u32
+    }
 }
 
 impl DepthPlane {
