@@ -193,7 +193,7 @@ pub fn describe(engine: EngineSpec) -> &'static str {
         EngineSpec::Painter => "faces sorted by farthest depth, painted far to near, no splitting",
         EngineSpec::Bsp => "BSP tree built once, walked per view, fragments painted far to near",
         EngineSpec::Raycast => "one fixed-point ray per pixel centre through a per-frame BVH of screen boxes",
-        EngineSpec::Warnock => ""area subdivision (explicit bounded stack), leaves at one pixel decided by the Z-buffer's rule",
+        EngineSpec::Warnock => "area subdivision (explicit bounded stack), leaves at one pixel decided by the Z-buffer's rule",
         #[allow(unreachable_patterns)]
         _ => "",
     }
