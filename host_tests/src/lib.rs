@@ -8,6 +8,7 @@ pub mod fit;
 pub mod frame;
 pub mod image;
 pub mod metrics;
+pub mod newell;
 pub mod obj;
 pub mod orbit;
 pub mod pipeline;
