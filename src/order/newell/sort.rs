@@ -9,7 +9,7 @@ use crate::camera::Camera;
 use crate::mesh::{Mesh, Viewpoint, MAX_FACES};
 use crate::order::bsp::PLANE_TOLERANCE;
 use crate::order::build::need;
-use crate::order::plane::{dot, exact_side, split_point, vertex, Plane, Side, Tally};
+use crate::order::plane::{dot, exact_side, split_point, vertex, Plane, Side};
 use crate::order::seams::{insert_seam_vertices, Seams};
 use crate::sort::sort_by_key;
 use crate::Error;
@@ -108,6 +108,9 @@ struct Sorter<'a, 'b, 'm> {
     /// Twice the words of `list` (for errors about `work`).
     work_words: usize,
     generation: u32,
+    /// Marked fragments moved ahead again in this generation (at most the fragments
+    /// left to paint).
+    forced: usize,
     splits: usize,
     shuffles: usize,
     unresolved: usize,
@@ -154,6 +157,7 @@ pub(super) fn run<'s>(
         slots: 0,
         work_words,
         generation: 1,
+        forced: 0,
         splits: 0,
         shuffles: 0,
         unresolved: 0,
@@ -199,8 +203,36 @@ impl<'a> Sorter<'a, '_, '_> {
         Plane::of_record(self.mesh, self.face(f) as u32, self.tolerance_sq)
     }
 
-    fn tally(&self, f: usize, plane: &Plane) -> Tally {
-        Tally::of(plane, self.idx(f), self.vertices)
+    /// The plane of fragment `f`'s face and the face's own thickness about it: the
+    /// largest distance of its vertices (0 for a planar face, in the units of
+    /// [`Plane::distance`]).
+    fn banded(&self, f: usize) -> (Plane, f64) {
+        let plane = self.plane(f);
+        let corners = self.mesh.face(self.face(f));
+        let band = corners.iter().fold(0.0f64, |b, &i| {
+            b.max(plane.distance(vertex(self.mesh.vertices(), i)).abs())
+        });
+        (plane, band)
+    }
+
+    /// How many vertices of fragment `f` lie in front of and behind `plane`, beyond
+    /// the tolerance and beyond `band` (a face that is not planar is known no better
+    /// than its thickness: a vertex within it counts as on the plane).
+    fn sides(&self, f: usize, (plane, band): &(Plane, f64)) -> (usize, usize) {
+        let mut sides = (0, 0);
+        for &i in self.idx(f) {
+            let p = vertex(self.vertices, i);
+            let s = plane.distance(p);
+            if s.abs() <= *band {
+                continue;
+            }
+            match plane.side_of(s, p) {
+                Side::Front => sides.0 += 1,
+                Side::Back => sides.1 += 1,
+                Side::On => {}
+            }
+        }
+        sides
     }
 
     /// The list's sort key: farthest depth first, then slot.
@@ -395,11 +427,23 @@ impl<'a> Sorter<'a, '_, '_> {
                 if self.split_cycle(head, j)? {
                     continue 'head;
                 }
+                if self.forced < self.len - head && !self.may_obscure(q, p) {
+                    // Q may go first, but it was moved ahead before in this round
+                    // and no plane cuts the cycle: the tests are conservative, so
+                    // this may be no cycle at all. Move it again, a bounded number
+                    // of times per round.
+                    self.step()?;
+                    self.shuffles += 1;
+                    self.forced += 1;
+                    self.move_ahead(head, j)?;
+                    continue 'head;
+                }
                 self.unresolved += 1;
                 j += 1;
             }
             head += 1;
             self.generation = self.generation.saturating_add(1);
+            self.forced = 0;
         }
         Ok(())
     }
@@ -422,22 +466,22 @@ impl<'a> Sorter<'a, '_, '_> {
             // Pieces of one face do not overlap.
             return false;
         }
-        let (plane_p, plane_q) = (self.plane(p), self.plane(q));
-        let (p_by_q, q_by_p) = (self.tally(p, &plane_q), self.tally(q, &plane_p));
-        if p_by_q.front == 0 && p_by_q.back == 0 && q_by_p.front == 0 && q_by_p.back == 0 {
+        let (plane_p, plane_q) = (self.banded(p), self.banded(q));
+        let (p_by_q, q_by_p) = (self.sides(p, &plane_q), self.sides(q, &plane_p));
+        if p_by_q == (0, 0) && q_by_p == (0, 0) {
             // Coplanar: the lower face index is nearer where they overlap.
             return fp < fq && self.projections_overlap(p, q);
         }
         // 4: P wholly on the far side of Q's plane (Q edge-on covers nothing).
-        let far = match self.view.eye_side(&plane_q) {
-            Side::Front => p_by_q.front == 0,
-            Side::Back => p_by_q.back == 0,
+        let far = match self.view.eye_side(&plane_q.0) {
+            Side::Front => p_by_q.0 == 0,
+            Side::Back => p_by_q.1 == 0,
             Side::On => true,
         };
         // 5: Q wholly on the near side of P's plane.
-        let near = match self.view.eye_side(&plane_p) {
-            Side::Front => q_by_p.back == 0,
-            Side::Back => q_by_p.front == 0,
+        let near = match self.view.eye_side(&plane_p.0) {
+            Side::Front => q_by_p.1 == 0,
+            Side::Back => q_by_p.0 == 0,
             Side::On => true,
         };
         // 6: the projections overlap.
@@ -482,39 +526,58 @@ impl<'a> Sorter<'a, '_, '_> {
 
     /// Does fragment `f` have vertices on both sides of `plane` (beyond the
     /// tolerance)?
-    fn straddles(&self, f: usize, plane: &Plane) -> bool {
-        let t = self.tally(f, plane);
-        t.front > 0 && t.back > 0
+    fn straddles(&self, f: usize, plane: &(Plane, f64)) -> bool {
+        let (front, back) = self.sides(f, plane);
+        front > 0 && back > 0
     }
 
     /// Breaks the cycle found at head P (`list[head]`) and Q (`list[j]`) by a split:
-    /// Q by P's plane, or P by Q's, or either by the plane of another fragment of
-    /// the cycle (marked in this generation). False when no plane cuts them.
+    /// Q by P's plane, or P by Q's, or else any fragment of the cycle (P, Q and the
+    /// fragments moved ahead in this round) by the plane of another. False when no
+    /// such plane cuts any of them.
     fn split_cycle(&mut self, head: usize, j: usize) -> Result<bool, Error> {
         let (p, q) = (self.at(head) as usize, self.at(j) as usize);
-        let (plane_p, plane_q) = (self.plane(p), self.plane(q));
+        let (plane_p, plane_q) = (self.banded(p), self.banded(q));
         if self.straddles(q, &plane_p) {
-            self.split_at(head, j, &plane_p)?;
+            self.split_at(head, j, &plane_p.0)?;
             return Ok(true);
         }
         if self.straddles(p, &plane_q) {
-            self.split_at(head, head, &plane_q)?;
+            self.split_at(head, head, &plane_q.0)?;
             return Ok(true);
         }
-        for k in head..self.len {
-            let r = self.at(k) as usize;
-            if r == p || r == q || self.marks.get(r).copied() != Some(self.generation) {
+        // The cycle runs through fragments moved ahead in this round: cut one of
+        // them (or P, or Q) by the plane of another.
+        let in_cycle = |this: &Self, k: usize| {
+            k == head || k == j || this.marks.get(this.at(k) as usize) == Some(&this.generation)
+        };
+        for kr in head..self.len {
+            if !in_cycle(self, kr) {
                 continue;
             }
-            let plane_r = self.plane(r);
-            if self.straddles(q, &plane_r) {
-                self.split_at(head, j, &plane_r)?;
-                return Ok(true);
+            let r = self.at(kr) as usize;
+            for ks in head..self.len {
+                let s = self.at(ks) as usize;
+                if ks == kr || !in_cycle(self, ks) || self.face(s) == self.face(r) {
+                    continue;
+                }
+                let plane_s = self.banded(s);
+                if self.straddles(r, &plane_s) {
+                    self.split_at(head, kr, &plane_s.0)?;
+                    return Ok(true);
+                }
             }
-            if self.straddles(p, &plane_r) {
-                self.split_at(head, head, &plane_r)?;
-                return Ok(true);
-            }
+        }
+        // Last, P and Q by each other's plane without the thickness band (faces
+        // that are not planar: their vertices within the band decided nothing).
+        let (plane_p, plane_q) = ((plane_p.0, 0.0), (plane_q.0, 0.0));
+        if self.straddles(q, &plane_p) {
+            self.split_at(head, j, &plane_p.0)?;
+            return Ok(true);
+        }
+        if self.straddles(p, &plane_q) {
+            self.split_at(head, head, &plane_q.0)?;
+            return Ok(true);
         }
         Ok(false)
     }
