@@ -187,6 +187,17 @@ impl Default for NewellOptions {
 
 /// A depth order for one view by Newell's depth sort: fragments of the mesh's faces,
 /// their sources and their front-to-back ranks.
+///
+/// The drawn faces are sorted by farthest depth; then, for the farthest polygon P
+/// and each Q whose depth range overlaps P's, P may be painted first when one of
+/// Newell's tests succeeds: (1) P's depth range lies wholly beyond Q's; (2) their
+/// screen x-extents or (3) y-extents are disjoint; (4) P lies wholly on the far side
+/// of Q's plane; (5) Q wholly on the near side of P's plane; (6) their projections do
+/// not overlap. If all fail and Q may go first, Q is moved ahead (a shuffle, marked);
+/// a marked Q that must move again, or two polygons that may each obscure the other
+/// (interpenetration), are a cycle: one polygon is split by another's plane.
+/// Coplanar overlapping polygons: the lower face index ranks nearer. Split points are
+/// made watertight with the BSP build's seam code (T-vertices).
 #[derive(Debug, Clone, Copy)]
 pub struct NewellOrder<'s> {
     pub(super) fragments: Mesh<'s>,
@@ -211,7 +222,7 @@ impl<'s> NewellOrder<'s> {
     }
 
     /// Sorts the faces of `mesh` drawn in the view of `camera` into a front-to-back
-    /// order (see the [module](self) documentation), splitting faces where no order
+    /// order, splitting faces where no order
     /// exists. With `cull`, faces that do not face the eye
     /// ([`Mesh::faces_viewpoint`]) are left out: pass what the renderer culls
     /// ([`Cull::Auto`](crate::render::Cull::Auto) is `edges.is_closed()`). Faces left
