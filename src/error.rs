@@ -72,6 +72,14 @@ pub enum Error<T = Infallible> {
     /// vertices do not begin with the mesh's, or a surface has no source face or
     /// rank).
     DepthOrderMismatch,
+    /// Newell's depth sort ([`NewellOrder`](crate::order::NewellOrder)) made more
+    /// shuffles and splits than its bound
+    /// ([`NewellOptions::max_steps`](crate::order::NewellOptions::max_steps)) without
+    /// settling the order.
+    DepthSortUnsettled {
+        /// Shuffles and splits made when it stopped.
+        steps: usize,
+    },
     /// A row needs a wider surface code than the engine was compiled for.
     CodeTooWide {
         /// Bits the widest row needs.
@@ -133,6 +141,7 @@ impl Error<Infallible> {
             Error::TooManyFaces { faces, max } => Error::TooManyFaces { faces, max },
             Error::BadCamera(p) => Error::BadCamera(p),
             Error::DepthOrderMismatch => Error::DepthOrderMismatch,
+            Error::DepthSortUnsettled { steps } => Error::DepthSortUnsettled { steps },
             Error::CodeTooWide { needed, capacity } => Error::CodeTooWide { needed, capacity },
             Error::Scheme(v) => Error::Scheme(v),
             Error::SubpixelTooCoarse { bits, needed } => Error::SubpixelTooCoarse { bits, needed },
@@ -176,6 +185,10 @@ impl<T: fmt::Debug> fmt::Display for Error<T> {
             }
             Error::BadCamera(p) => write!(f, "bad camera: {p:?}"),
             Error::DepthOrderMismatch => f.write_str("the depth order was made for another mesh"),
+            Error::DepthSortUnsettled { steps } => write!(
+                f,
+                "the depth sort did not settle within {steps} shuffles and splits"
+            ),
             Error::CodeTooWide { needed, capacity } => write!(
                 f,
                 "a row needs a {needed}-bit surface code, {capacity} bits are compiled in"

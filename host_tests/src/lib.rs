@@ -10,6 +10,7 @@ pub mod frame;
 pub mod grey;
 pub mod image;
 pub mod metrics;
+pub mod newell;
 pub mod obj;
 pub mod orbit;
 pub mod pick;

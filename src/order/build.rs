@@ -2,7 +2,7 @@
 
 use super::bsp::{BspNode, BspOptions, BspStorage, BspTree, NO_NODE, PLANE_TOLERANCE};
 use super::plane::{exact_side, split_point, vertex, Fate, Plane, Record, Records, Side, Tally};
-use super::seams::Seams;
+use super::seams::{insert_seam_vertices, Seams};
 use crate::mesh::{Mesh, MAX_FACES};
 use crate::Error;
 
@@ -205,108 +205,24 @@ impl<'s> Output<'s> {
         }
     }
 
-    /// Makes the fragments watertight (see [`Seams`]): inserts into every fragment
-    /// edge the split points of its root segment that lie strictly between its ends,
-    /// in order. Sorts the split points in `work`; returns the words used there.
-    /// The CSR arrays are rewritten in place, back to front.
+    /// Makes the fragments watertight: [`insert_seam_vertices`]. Returns the
+    /// `work` words used.
     fn insert_seam_vertices(&mut self, work: &mut [u32]) -> Result<usize, Error> {
+        let vertices: &[[f32; 3]] = self.vertices;
+        let roots: &[[u32; 2]] = self.seams;
         let splits = self.vertex_count.saturating_sub(self.base);
-        let capacity = work.len();
-        let sorted = work.get_mut(..splits).ok_or(Error::CapacityExceeded {
-            needed: splits,
-            capacity,
-        })?;
-        for (k, s) in sorted.iter_mut().enumerate() {
-            // Vertex indices fit u32 (push_vertex checked).
-            *s = self.base.saturating_add(k) as u32;
-        }
-        let Self {
-            vertices,
-            vertex_count,
-            base,
-            seams,
-            indices,
-            index_count,
-            offsets,
-            fragment_count,
-            ..
-        } = self;
-        let vertices: &[[f32; 3]] = vertices;
-        let roots: &[[u32; 2]] = seams;
-        let seams = Seams {
-            vertices: vertices.get(..*vertex_count).unwrap_or(vertices),
-            base: *base,
-            roots: roots.get(..splits).unwrap_or(roots),
-        };
-        seams.sort(sorted);
-        let sorted: &[u32] = sorted;
-        let broken = Error::CapacityExceeded {
-            needed: *index_count,
-            capacity: indices.len(),
-        };
-        let range = |offsets: &[u32], f: usize| -> Result<(usize, usize), Error> {
-            match (offsets.get(f), offsets.get(f.saturating_add(1))) {
-                (Some(&s), Some(&e)) if s <= e => Ok((s as usize, e as usize)),
-                _ => Err(broken),
-            }
-        };
-        let extra = |idx: &[u32]| -> usize {
-            idx.iter()
-                .enumerate()
-                .map(|(k, &a)| {
-                    let b = idx.get(k + 1).or(idx.first()).copied().unwrap_or(a);
-                    seams.between(sorted, a, b).0.len()
-                })
-                .sum()
-        };
-        let mut added = 0usize;
-        for f in 0..*fragment_count {
-            let (s, e) = range(offsets, f)?;
-            added = added.saturating_add(extra(indices.get(s..e).ok_or(broken)?));
-        }
-        let total = index_count.saturating_add(added);
-        need(total, indices.len())?;
-        u32::try_from(total).map_err(|_| Error::CapacityExceeded {
-            needed: total,
-            capacity: u32::MAX as usize,
-        })?;
-        // Back to front: a fragment's new place starts at or after its old one, and
-        // within it each vertex moves up, so nothing is overwritten before it is read.
-        let mut end = total;
-        for f in (0..*fragment_count).rev() {
-            let (s, e) = range(offsets, f)?;
-            let len = e - s;
-            let grow = extra(indices.get(s..e).ok_or(broken)?);
-            let start = end
-                .checked_sub(len.saturating_add(grow))
-                .filter(|&start| start >= s)
-                .ok_or(broken)?;
-            let mut next = indices.get(s).copied().ok_or(broken)?;
-            let mut at = end;
-            for k in (s..e).rev() {
-                let a = indices.get(k).copied().ok_or(broken)?;
-                let (between, forward) = seams.between(sorted, a, next);
-                let points = sorted.get(between).unwrap_or(&[]);
-                // Written back to front: the points nearest `next` first.
-                if forward {
-                    points.iter().rev().for_each(|&x| put(indices, &mut at, x));
-                } else {
-                    points.iter().for_each(|&x| put(indices, &mut at, x));
-                }
-                put(indices, &mut at, a);
-                next = a;
-            }
-            if at != start {
-                // Unreachable: `extra` counted these very points.
-                return Err(broken);
-            }
-            if let Some(o) = offsets.get_mut(f + 1) {
-                *o = end as u32;
-            }
-            end = at;
-        }
-        *index_count = total;
-        Ok(splits)
+        let (index_count, words) = insert_seam_vertices(
+            vertices.get(..self.vertex_count).unwrap_or(vertices),
+            self.base,
+            roots.get(..splits).unwrap_or(roots),
+            self.indices,
+            self.index_count,
+            self.offsets,
+            self.fragment_count,
+            work,
+        )?;
+        self.index_count = index_count;
+        Ok(words)
     }
 
     fn finish(
@@ -726,12 +642,4 @@ fn choose_splitter(
             Plane::of_record(mesh, word, tolerance_sq),
         )
     })
-}
-
-/// Writes `value` just below `at` and moves `at` down.
-fn put(indices: &mut [u32], at: &mut usize, value: u32) {
-    *at = at.saturating_sub(1);
-    if let Some(w) = indices.get_mut(*at) {
-        *w = value;
-    }
 }

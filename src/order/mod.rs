@@ -1,5 +1,5 @@
-//! Depth order: a BSP tree built once for a static mesh, walked per viewpoint
-//! (papers 002 and 004).
+//! Depth order: a BSP tree built once for a static mesh, walked per viewpoint, or
+//! Newell's depth sort made per view ([`NewellOrder`]) (papers 002 and 004).
 //!
 //! [`BspTree::build`] splits the mesh's faces into fragments so that every node's
 //! plane has its subtrees' fragments strictly on one side each; it runs on an
@@ -13,6 +13,7 @@
 
 mod bsp;
 mod build;
+mod newell;
 mod plane;
 mod seams;
 #[cfg(test)]
@@ -21,3 +22,4 @@ mod tests;
 pub use bsp::{
     work_bound, BspNode, BspOptions, BspSizes, BspStorage, BspTree, NO_NODE, PLANE_TOLERANCE,
 };
+pub use newell::{NewellOptions, NewellOrder, NewellSizes, NewellStorage};

@@ -12,8 +12,10 @@
 //! strictly between its ends; both sides of an edge then have the same vertex
 //! sequence.
 
+use super::build::need;
 use super::plane::vertex;
 use crate::sort::sort_by_key;
+use crate::Error;
 
 /// The split points' root segments and the vertices they index.
 pub(super) struct Seams<'a> {
@@ -152,5 +154,118 @@ impl Seams<'_> {
             s < bits || (s == bits && k < hi)
         });
         (start..end.max(start), ka <= kb)
+    }
+}
+
+/// Makes fragments watertight (see [`Seams`]): inserts into every fragment edge the
+/// split points of its root segment that lie strictly between its ends, in order.
+///
+/// `vertices` are all vertices in use (the mesh's, then the split points from
+/// `base` on), `roots[x - base]` the root segment of split point `x`; the fragments
+/// are `offsets[..=fragments]` over `indices[..index_count]` (CSR). Sorts the split
+/// points in `work` and rewrites the CSR arrays in place, back to front. Returns the
+/// new index count and the `work` words used. [`Error::CapacityExceeded`] when
+/// `work` cannot hold the split points or `indices` the inserted ones (exact need).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn insert_seam_vertices(
+    vertices: &[[f32; 3]],
+    base: usize,
+    roots: &[[u32; 2]],
+    indices: &mut [u32],
+    index_count: usize,
+    offsets: &mut [u32],
+    fragments: usize,
+    work: &mut [u32],
+) -> Result<(usize, usize), Error> {
+    let splits = vertices.len().saturating_sub(base);
+    let capacity = work.len();
+    let sorted = work.get_mut(..splits).ok_or(Error::CapacityExceeded {
+        needed: splits,
+        capacity,
+    })?;
+    for (k, s) in sorted.iter_mut().enumerate() {
+        // Vertex indices fit u32 (the split points were numbered by u32).
+        *s = base.saturating_add(k) as u32;
+    }
+    let seams = Seams {
+        vertices,
+        base,
+        roots: roots.get(..splits).unwrap_or(roots),
+    };
+    seams.sort(sorted);
+    let sorted: &[u32] = sorted;
+    let broken = Error::CapacityExceeded {
+        needed: index_count,
+        capacity: indices.len(),
+    };
+    let range = |offsets: &[u32], f: usize| -> Result<(usize, usize), Error> {
+        match (offsets.get(f), offsets.get(f.saturating_add(1))) {
+            (Some(&s), Some(&e)) if s <= e => Ok((s as usize, e as usize)),
+            _ => Err(broken),
+        }
+    };
+    let extra = |idx: &[u32]| -> usize {
+        idx.iter()
+            .enumerate()
+            .map(|(k, &a)| {
+                let b = idx.get(k + 1).or(idx.first()).copied().unwrap_or(a);
+                seams.between(sorted, a, b).0.len()
+            })
+            .sum()
+    };
+    let mut added = 0usize;
+    for f in 0..fragments {
+        let (s, e) = range(offsets, f)?;
+        added = added.saturating_add(extra(indices.get(s..e).ok_or(broken)?));
+    }
+    let total = index_count.saturating_add(added);
+    need(total, indices.len())?;
+    u32::try_from(total).map_err(|_| Error::CapacityExceeded {
+        needed: total,
+        capacity: u32::MAX as usize,
+    })?;
+    // Back to front: a fragment's new place starts at or after its old one, and
+    // within it each vertex moves up, so nothing is overwritten before it is read.
+    let mut end = total;
+    for f in (0..fragments).rev() {
+        let (s, e) = range(offsets, f)?;
+        let len = e - s;
+        let grow = extra(indices.get(s..e).ok_or(broken)?);
+        let start = end
+            .checked_sub(len.saturating_add(grow))
+            .filter(|&start| start >= s)
+            .ok_or(broken)?;
+        let mut next = indices.get(s).copied().ok_or(broken)?;
+        let mut at = end;
+        for k in (s..e).rev() {
+            let a = indices.get(k).copied().ok_or(broken)?;
+            let (between, forward) = seams.between(sorted, a, next);
+            let points = sorted.get(between).unwrap_or(&[]);
+            // Written back to front: the points nearest `next` first.
+            if forward {
+                points.iter().rev().for_each(|&x| put(indices, &mut at, x));
+            } else {
+                points.iter().for_each(|&x| put(indices, &mut at, x));
+            }
+            put(indices, &mut at, a);
+            next = a;
+        }
+        if at != start {
+            // Unreachable: `extra` counted these very points.
+            return Err(broken);
+        }
+        if let Some(o) = offsets.get_mut(f + 1) {
+            *o = end as u32;
+        }
+        end = at;
+    }
+    Ok((total, splits))
+}
+
+/// Writes `value` just below `at` and moves `at` down.
+fn put(indices: &mut [u32], at: &mut usize, value: u32) {
+    *at = at.saturating_sub(1);
+    if let Some(w) = indices.get_mut(*at) {
+        *w = value;
     }
 }
