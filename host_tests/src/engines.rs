@@ -297,3 +297,98 @@ pub(crate) fn render_raycast<Frac: LeEqU32>(
     ]);
     Ok(frame)
 }
+
+/// `newell`: Newell's depth sort for this frame's view (shuffles, splits, inside the
+/// measured frame), its fragments painted far to near. The lent storage is first
+/// grown until the sort fits (outside the frame), then the frame sorts again into it.
+pub(crate) fn render_newell_paint<Frac: LeEqU32>(
+    data: &MeshData,
+    cam: &CameraSpec,
+    spec: &RenderSpec,
+) -> Result<Frame, String> {
+    use pbuffer::order::NewellSizes;
+    let arrays = MeshArrays::new(data);
+    let mesh = Mesh::new(&arrays.vertices, &arrays.indices, &arrays.offsets)
+        .map_err(|e| format!("mesh: {e}"))?;
+    let mut storage = AdjacencyStorage::new(&arrays);
+    let build_bytes = storage.build_bytes();
+    let adjacency = storage.build(&mesh, spec.crease_deg)?;
+    let camera = camera(cam)?;
+    let settings = settings(spec)?;
+    let cull = crate::newell::culls(spec, adjacency.is_closed());
+    let mut splits = mesh.face_count() / 4 + 16;
+    let (mut buffers, fragments) = loop {
+        let sizes = NewellSizes::for_mesh(
+            mesh.vertices().len(),
+            mesh.face_count(),
+            mesh.indices().len(),
+            splits,
+        );
+        let mut b = crate::newell::NewellBuffers::new(sizes);
+        match b.sort(&mesh, &camera, cull) {
+            Ok(order) => {
+                let n = (order.fragments().vertices().len(), order.fragment_count());
+                break (b, n);
+            }
+            Err(pbuffer::Error::CapacityExceeded { .. }) if splits < 1 << 24 => {
+                splits = 2 * splits + 64
+            }
+            Err(e) => return Err(format!("Newell sort: {e}")),
+        }
+    };
+    let order_bytes = buffers.bytes();
+    let mut ids = IdBuffers::new(
+        spec,
+        fragments.0,
+        mesh.face_count(),
+        adjacency.edges().len(),
+    );
+    let mut list = vec![0u64; fragments.1];
+    let mut ws = ids.workspace();
+    let lent = ws.bytes()
+        + std::mem::size_of_val(adjacency.edges())
+        + std::mem::size_of_val(list.as_slice())
+        + order_bytes;
+    let mut renderer = Box::new(PainterRenderer::<Frac, EDGES, POLY>::new());
+    let (w, h) = (spec.width, spec.height);
+    let mut target = PackedFrame::new(w, h);
+    let mut probe = Collect::new(w, h);
+    let start = Instant::now();
+    let mut result = None;
+    let mut figures = (0usize, 0usize);
+    measured_region(&mut || {
+        let order = match buffers.sort(&mesh, &camera, cull) {
+            Ok(o) => o,
+            Err(e) => {
+                result = Some(Err(e.widen()));
+                return;
+            }
+        };
+        figures = (order.splits(), order.shuffles());
+        result = Some(renderer.render(
+            &mesh,
+            &adjacency,
+            &camera,
+            &settings,
+            &mut ws,
+            PaintOrder::Order(order.depth_order()),
+            &mut list,
+            &MonoPalette::default(),
+            &mut target,
+            &mut probe,
+        ));
+    });
+    let stats = result
+        .expect("the measured region ran")
+        .map_err(|e| format!("render: {e}"))?;
+    let time_us = start.elapsed().as_micros() as u64;
+    let working = lent + std::mem::size_of::<PainterRenderer<Frac, EDGES, POLY>>();
+    let mut frame = frame(w, h, probe, target, &stats, working, build_bytes, time_us);
+    frame.stats.extend([
+        ("newell_fragments".into(), fragments.1 as u64),
+        ("newell_splits".into(), figures.0 as u64),
+        ("newell_shuffles".into(), figures.1 as u64),
+        ("newell_storage_bytes".into(), order_bytes as u64),
+    ]);
+    Ok(frame)
+}

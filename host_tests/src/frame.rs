@@ -97,11 +97,14 @@ pub enum EngineSpec {
     /// One fixed-point ray per pixel centre through a bounding-volume hierarchy built
     /// per frame.
     Raycast,
+    /// Newell's list priority for each view (depth sort, Newell's tests, shuffles,
+    /// splits), the fragments painted far to near.
+    Newell,
 }
 
 impl EngineSpec {
     /// Every engine, in the order the `--engine` help lists them.
-    pub const ALL: [EngineSpec; 8] = [
+    pub const ALL: [EngineSpec; 9] = [
         EngineSpec::CodeFill,
         EngineSpec::CodeFillCrossings,
         EngineSpec::Scanline,
@@ -110,6 +113,7 @@ impl EngineSpec {
         EngineSpec::Bsp,
         EngineSpec::Warnock,
         EngineSpec::Raycast,
+        EngineSpec::Newell,
     ];
 
     /// The engine's `--engine` name.
@@ -123,6 +127,7 @@ impl EngineSpec {
             EngineSpec::Bsp => "bsp",
             EngineSpec::Warnock => "warnock",
             EngineSpec::Raycast => "raycast",
+            EngineSpec::Newell => "newell",
         }
     }
 

@@ -267,6 +267,9 @@ fn render_s<Frac: LeEqU32>(
     if spec.engine == EngineSpec::Warnock {
         return crate::engines::render_warnock::<Frac>(mesh, cam, spec);
     }
+    if spec.engine == EngineSpec::Newell {
+        return crate::engines::render_newell_paint::<Frac>(mesh, cam, spec);
+    }
     if spec.engine == EngineSpec::Raycast {
         return crate::engines::render_raycast::<Frac>(mesh, cam, spec);
     }

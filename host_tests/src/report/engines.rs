@@ -49,6 +49,7 @@ pub fn expected_failure(engine: EngineSpec, scene: &str) -> Option<&'static str>
             "boxes" | "frame" | "gear" | "torus" => Some("sorting by the farthest point misorders faces whose depth ranges overlap (a near face with a far corner is painted before a face it hides); no Newell tests, no splitting"),
             _ => Some("a model's faces overlap in depth range everywhere: the farthest point is not an order"),
         },
+        EngineSpec::Newell => (scene == "suzanne").then_some("suzanne's quads are not planar; Newell's plane-side tests treat each as its plane within its own thickness, so where a face passes through another's bulge the order is wrong at a few pixels"),
         EngineSpec::CodeFill | EngineSpec::CodeFillCrossings | EngineSpec::Bsp => {
             (scene == "suzanne").then_some("suzanne's quads are not planar; the BSP tree orders each as its plane, so a face passing through another's bulge ranks in front of it (a few pixels)")
         }
@@ -192,6 +193,7 @@ pub fn describe(engine: EngineSpec) -> &'static str {
         EngineSpec::ZBuffer => "depth buffer (32-bit here), the whole frame",
         EngineSpec::Painter => "faces sorted by farthest depth, painted far to near, no splitting",
         EngineSpec::Bsp => "BSP tree built once, walked per view, fragments painted far to near",
+        EngineSpec::Newell => "Newell's depth sort per view (z-extent, x/y extents, plane sides, projection overlap), shuffle and split; fragments painted far to near",
         EngineSpec::Raycast => "one fixed-point ray per pixel centre through a per-frame BVH of screen boxes",
         EngineSpec::Warnock => "area subdivision (explicit bounded stack), leaves at one pixel decided by the Z-buffer's rule",
         #[allow(unreachable_patterns)]
