@@ -125,7 +125,7 @@ fn flag_errors_name_the_flag() {
         (&["--crease", "-5"], "--crease"),
         (&["--cull", "sometimes"], "--cull"),
         (&["--mode", "solid"], "--mode"),
-        (&["--engine", "warnock"], "--engine"),
+        (&["--engine", "phong"], "--engine"),
         (&["--subpixel", "13"], "--subpixel"),
         (&["--depth-bits", "8"], "--depth-bits"),
         (&["--band", "0"], "--band"),

@@ -44,7 +44,8 @@ impl EngineRow {
 pub fn expected_failure(engine: EngineSpec, scene: &str) -> Option<&'static str> {
     match engine {
         EngineSpec::Painter => match scene {
-            "cube" | "icosphere" | "coplanar" => None,
+            "cube" | "icosphere" => None,
+            "coplanar" => Some("overlapping coplanar faces tie in depth, but the painter orders them by their farthest points (different boxes), not by the lower face index the conventions ask for"),
             "cyclic" => Some("three sticks overlap cyclically: no order of whole faces is right, and the painter does not split"),
             "boxes" | "frame" | "gear" | "torus" => Some("sorting by the farthest point misorders faces whose depth ranges overlap (a near face with a far corner is painted before a face it hides); no Newell tests, no splitting"),
             _ => Some("a model's faces overlap in depth range everywhere: the farthest point is not an order"),
