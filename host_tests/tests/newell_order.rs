@@ -1,11 +1,11 @@
-//! Newell's depth sort (`pbuffer::order::NewellOrder`), sorted per frame and rendered
-//! by the code-fill engine through `CodeFillRenderer::render_with`
-//! (`Visibility::Order`, `host_tests::newell::render_newell_frame`), against the
+//! Newell's depth sort (`pbuffer::order::NewellOrder`), sorted per frame and its
+//! fragments painted far to near (`render --engine newell`, through
+//! `host_tests::pipeline::render_frame`), against the
 //! independent f64 reference (`reference3d`), by the metrics and limits of
 //! `pipeline_vs_reference`: surfaces must have no holes, no wrong faces, no
 //! depth-order errors and no face-id differences away from edges; lines must stay
-//! within the misclassified / missing limits. Each scene runs with bit-sliced rows
-//! (full frame) and with crossings (8-row bands).
+//! within the misclassified / missing limits. Each scene runs as a full frame and in
+//! 8-row bands.
 //! One report line per scene, plus the sort's figures:
 //! `cargo test --release -p host_tests --test newell_order -- --nocapture`.
 
@@ -14,7 +14,7 @@ use std::time::Instant;
 
 use host_tests::frame::{CameraSpec, EngineSpec, MeshData, ModeSpec, RenderSpec};
 use host_tests::metrics::{compare, SceneMetrics};
-use host_tests::newell::render_newell_frame;
+use host_tests::pipeline::render_frame;
 use host_tests::reference3d::reference_frame;
 use host_tests::shapes;
 
@@ -46,10 +46,7 @@ fn run_scene(
     };
     let ref_ms = t.elapsed().as_secs_f64() * 1e3;
     for mode in [ModeSpec::Surfaces, ModeSpec::Dashed] {
-        for (engine, band) in [
-            (EngineSpec::CodeFill, height),
-            (EngineSpec::CodeFillCrossings, 8),
-        ] {
+        for (engine, band) in [(EngineSpec::Newell, height), (EngineSpec::Newell, 8)] {
             let spec = RenderSpec {
                 engine,
                 mode,
@@ -57,7 +54,7 @@ fn run_scene(
                 ..base.clone()
             };
             let label = format!(
-                "{name} {width}x{height} {} newell-{} band {band}",
+                "{name} {width}x{height} {} {} band {band}",
                 if mode == ModeSpec::Surfaces {
                     "surf"
                 } else {
@@ -66,7 +63,7 @@ fn run_scene(
                 engine.name(),
             );
             let t = Instant::now();
-            let frame = match render_newell_frame(mesh, cam, &spec) {
+            let frame = match render_frame(mesh, cam, &spec) {
                 Ok(f) => f,
                 Err(e) => {
                     failures.push(format!("{label}: library failed: {e}"));
@@ -81,17 +78,16 @@ fn run_scene(
             m.ref_ms = ref_ms;
             report.push(m.to_string());
             let stat = |k: &str| frame.stats.iter().find(|(n, _)| n == k).map_or(0, |s| s.1);
-            if surfaces && engine == EngineSpec::CodeFill {
+            if surfaces && band == height {
                 report.push(format!(
                     "  newell: {} faces drawn -> {} fragments, {} splits, {} shuffles, \
-                     {} unresolved, sort {} us, order {} bytes",
+                     frame {} us, order storage {} bytes",
                     stat("faces_drawn"),
                     stat("newell_fragments"),
                     stat("newell_splits"),
                     stat("newell_shuffles"),
-                    stat("newell_unresolved"),
-                    stat("newell_sort_us"),
-                    stat("newell_bytes"),
+                    stat("time_us"),
+                    stat("newell_storage_bytes"),
                 ));
             }
             if let Err(e) = m.check() {
@@ -107,7 +103,7 @@ fn run_scene(
 
 /// The measured deviations, kept visible and bounded at their measured counts.
 ///
-/// Suzanne at 400x240 (both row modes): 1 depth-order error (pixel (125, 103)) and
+/// Suzanne at 400x240 (full frame and bands): 1 depth-order error (pixel (125, 103)) and
 /// 2 far id differences (pixels (197, 144) and (190, 147)) of 20,537 covered pixels.
 /// Traced: the two far differences lie where a non-planar quad meets another
 /// within its own thickness (face 232, corners 2.2e-3 off its Newell plane, drawn
