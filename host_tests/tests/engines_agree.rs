@@ -192,27 +192,22 @@ fn stat(f: &Frame, name: &str) -> u64 {
     f.stats.iter().find(|s| s.0 == name).map_or(0, |s| s.1)
 }
 
-#[test]
-fn scanline_draws_the_z_buffer_frame_on_random_scenes() {
+/// Renders every random scene with `engine` and with `base`; the frames must be the
+/// same pixel for pixel (face ids, line masks and the packed picture), or both
+/// engines must fail alike. `seen` sees each frame of `engine`. At least 290 scenes
+/// render and they cover more than 500,000 face pixels.
+fn assert_same_frames(base: EngineSpec, engine: EngineSpec, mut seen: impl FnMut(&Frame)) {
     let mut failures = Vec::new();
-    let (mut rendered, mut covered, mut widest) = (0, 0usize, 0u64);
+    let (mut rendered, mut covered) = (0, 0usize);
     for (k, sc) in scenes().iter().enumerate() {
-        let z = render_frame(
-            &sc.mesh,
-            &sc.cam,
-            &with_engine(&sc.spec, EngineSpec::ZBuffer),
-        );
-        let c = render_frame(
-            &sc.mesh,
-            &sc.cam,
-            &with_engine(&sc.spec, EngineSpec::Scanline),
-        );
-        match (z, c) {
-            (Ok(z), Ok(c)) => {
+        let b = render_frame(&sc.mesh, &sc.cam, &with_engine(&sc.spec, base));
+        let e = render_frame(&sc.mesh, &sc.cam, &with_engine(&sc.spec, engine));
+        match (b, e) {
+            (Ok(b), Ok(e)) => {
                 rendered += 1;
-                covered += z.ids.iter().filter(|&&id| id != 0).count();
-                widest = widest.max(stat(&c, "code_bits"));
-                let d = differing(&z, &c);
+                covered += b.ids.iter().filter(|&&id| id != 0).count();
+                seen(&e);
+                let d = differing(&b, &e);
                 if d != (0, 0, 0) {
                     let spec = &sc.spec;
                     failures.push(format!(
@@ -222,14 +217,18 @@ fn scanline_draws_the_z_buffer_frame_on_random_scenes() {
                 }
             }
             (Err(a), Err(b)) if a == b => {}
-            (z, c) => failures.push(format!(
+            (b, e) => failures.push(format!(
                 "scene {k}: the engines disagree on failing: {:?} / {:?}",
-                z.err(),
-                c.err()
+                b.err(),
+                e.err()
             )),
         }
     }
-    println!("{rendered} scenes, {covered} face pixels, widest code {widest} bits");
+    println!(
+        "{} against {}: {rendered} scenes, {covered} face pixels",
+        engine.name(),
+        base.name()
+    );
     assert!(rendered >= 290, "only {rendered} scenes rendered");
     assert!(
         covered > 500_000,
@@ -244,53 +243,17 @@ fn scanline_draws_the_z_buffer_frame_on_random_scenes() {
 }
 
 #[test]
+fn scanline_draws_the_z_buffer_frame_on_random_scenes() {
+    let mut widest = 0u64;
+    assert_same_frames(EngineSpec::ZBuffer, EngineSpec::Scanline, |f| {
+        widest = widest.max(stat(f, "code_bits"));
+    });
+    println!("widest code {widest} bits");
+}
+
+#[test]
 fn warnock_draws_the_z_buffer_frame_on_random_scenes() {
-    let mut failures = Vec::new();
-    let (mut rendered, mut covered) = (0, 0usize);
-    for (k, sc) in scenes().iter().enumerate() {
-        let z = render_frame(
-            &sc.mesh,
-            &sc.cam,
-            &with_engine(&sc.spec, EngineSpec::ZBuffer),
-        );
-        let a = render_frame(
-            &sc.mesh,
-            &sc.cam,
-            &with_engine(&sc.spec, EngineSpec::Warnock),
-        );
-        match (z, a) {
-            (Ok(z), Ok(a)) => {
-                rendered += 1;
-                covered += z.ids.iter().filter(|&&id| id != 0).count();
-                let d = differing(&z, &a);
-                if d != (0, 0, 0) {
-                    let spec = &sc.spec;
-                    failures.push(format!(
-                        "scene {k} ({}x{}, S {}, band {}, {:?}): {} ids, {} line pixels, {} bytes differ",
-                        spec.width, spec.height, spec.subpixel, spec.band, spec.cull, d.0, d.1, d.2
-                    ));
-                }
-            }
-            (Err(a), Err(b)) if a == b => {}
-            (z, a) => failures.push(format!(
-                "scene {k}: the engines disagree on failing: {:?} / {:?}",
-                z.err(),
-                a.err()
-            )),
-        }
-    }
-    println!("{rendered} scenes, {covered} face pixels");
-    assert!(rendered >= 290, "only {rendered} scenes rendered");
-    assert!(
-        covered > 500_000,
-        "the scenes cover too little: {covered} pixels"
-    );
-    assert!(
-        failures.is_empty(),
-        "{} failures:\n{}",
-        failures.len(),
-        failures.join("\n")
-    );
+    assert_same_frames(EngineSpec::ZBuffer, EngineSpec::Warnock, |_| {});
 }
 
 #[test]
@@ -382,91 +345,15 @@ fn code_fill_in_depth_order_is_as_faithful_as_the_z_buffer_on_random_scenes() {
 /// set code bit alike, so the frames are identical.
 #[test]
 fn painting_a_bsp_order_draws_the_code_fill_frame_on_random_scenes() {
-    let mut failures = Vec::new();
-    let mut rendered = 0;
-    for (k, sc) in scenes().iter().enumerate() {
-        let c = render_frame(
-            &sc.mesh,
-            &sc.cam,
-            &with_engine(&sc.spec, EngineSpec::CodeFill),
-        );
-        let b = render_frame(&sc.mesh, &sc.cam, &with_engine(&sc.spec, EngineSpec::Bsp));
-        match (c, b) {
-            (Ok(c), Ok(b)) => {
-                rendered += 1;
-                let d = differing(&c, &b);
-                if d != (0, 0, 0) {
-                    failures.push(format!("scene {k}: {d:?} (ids, line pixels, bytes) differ"));
-                }
-            }
-            (Err(a), Err(b)) if a == b => {}
-            (c, b) => failures.push(format!(
-                "scene {k}: the engines disagree on failing: {:?} / {:?}",
-                c.err(),
-                b.err()
-            )),
-        }
-    }
-    println!("{rendered} scenes");
-    assert!(rendered >= 290, "only {rendered} scenes rendered");
-    assert!(
-        failures.is_empty(),
-        "{} failures:\n{}",
-        failures.len(),
-        failures.join("\n")
-    );
+    assert_same_frames(EngineSpec::CodeFill, EngineSpec::Bsp, |_| {});
 }
 
 #[test]
 fn raycast_draws_the_z_buffer_frame_on_random_scenes() {
-    let mut failures = Vec::new();
-    let (mut rendered, mut covered, mut fallbacks, mut tests) = (0, 0usize, 0u64, 0u64);
-    for (k, sc) in scenes().iter().enumerate() {
-        let z = render_frame(
-            &sc.mesh,
-            &sc.cam,
-            &with_engine(&sc.spec, EngineSpec::ZBuffer),
-        );
-        let r = render_frame(
-            &sc.mesh,
-            &sc.cam,
-            &with_engine(&sc.spec, EngineSpec::Raycast),
-        );
-        match (z, r) {
-            (Ok(z), Ok(r)) => {
-                rendered += 1;
-                covered += z.ids.iter().filter(|&&id| id != 0).count();
-                fallbacks += stat(&r, "ray_fallbacks");
-                tests += stat(&r, "ray_face_tests");
-                let d = differing(&z, &r);
-                if d != (0, 0, 0) {
-                    let spec = &sc.spec;
-                    failures.push(format!(
-                        "scene {k} ({}x{}, S {}, band {}, {:?}): {} ids, {} line pixels, {} bytes differ",
-                        spec.width, spec.height, spec.subpixel, spec.band, spec.cull, d.0, d.1, d.2
-                    ));
-                }
-            }
-            (Err(a), Err(b)) if a == b => {}
-            (z, r) => failures.push(format!(
-                "scene {k}: the engines disagree on failing: {:?} / {:?}",
-                z.err(),
-                r.err()
-            )),
-        }
-    }
-    println!(
-        "{rendered} scenes, {covered} face pixels, {tests} ray-face tests, {fallbacks} pixels decided exhaustively"
-    );
-    assert!(rendered >= 290, "only {rendered} scenes rendered");
-    assert!(
-        covered > 500_000,
-        "the scenes cover too little: {covered} pixels"
-    );
-    assert!(
-        failures.is_empty(),
-        "{} failures:\n{}",
-        failures.len(),
-        failures.join("\n")
-    );
+    let (mut fallbacks, mut tests) = (0u64, 0u64);
+    assert_same_frames(EngineSpec::ZBuffer, EngineSpec::Raycast, |f| {
+        fallbacks += stat(f, "ray_fallbacks");
+        tests += stat(f, "ray_face_tests");
+    });
+    println!("{tests} ray-face tests, {fallbacks} pixels decided exhaustively");
 }
