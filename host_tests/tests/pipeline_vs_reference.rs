@@ -128,19 +128,8 @@ fn run_scene(
     (report, failures)
 }
 
-/// The measured deviations from the limits, kept visible and bounded rather
+/// The measured deviation from the limits, kept visible and bounded rather
 /// than hidden.
-///
-/// Suzanne at 400x240 in a BSP tree's depth order (`codefill`, `codefill-crossings`):
-/// 2 depth-order errors and 5 far id differences (of 20,537 covered pixels). Traced:
-/// suzanne's quads are not planar (face 115 is 1.3e-2 off its Newell plane, 336
-/// times the tree's tolerance); the tree orders a non-planar face as its plane, so
-/// where face 19 passes through face 115's bulge it ranks in front. Fanning such
-/// faces into triangles orders them exactly but changes the pixels a face covers
-/// where its projection is concave (CONVENTIONS.md forbids that). The scan-line and
-/// Z-buffer engines compare depths per pixel and have 0 here. Tolerated: only those
-/// two engines, only that scene, surfaces only, at most 4 depth-order errors and 10
-/// far differences, no hole and no wrong face.
 ///
 /// Beetle at 400x240 misses 1.18% of the reference's hidden-edge
 /// length (limit 1%). Traced (13 px of 1099): all of it lies on four creases of
@@ -154,14 +143,6 @@ fn run_scene(
 /// tolerated; everything else must pass. Returns the explanation when `m` fails in
 /// exactly that known way.
 fn known_deviation(label: &str, m: &SceneMetrics) -> Option<&'static str> {
-    if let Some(sm) = &m.surfaces {
-        let ordered = label.starts_with("suzanne 400x240 surf codefill ")
-            || label.starts_with("suzanne 400x240 surf codefill-crossings ");
-        let bounded =
-            sm.holes == 0 && sm.wrong_faces == 0 && sm.depth_order <= 4 && sm.far_diffs <= 10;
-        return (ordered && bounded && m.lines.is_none())
-            .then_some("non-planar faces ordered as planes (see known_deviation)");
-    }
     let l = m.lines.as_ref()?;
     let only_hidden_length = m.surfaces.is_none()
         && l.misclassified_fraction() <= 0.005

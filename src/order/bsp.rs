@@ -245,13 +245,21 @@ impl<'s> BspTree<'s> {
     /// recursion), splitting fragments that straddle a node's plane.
     ///
     /// Planes and split points are computed in f64 (split points stored as f32; both
-    /// halves of a split share the split point's vertex index). Every face, planar or
-    /// not, starts as one fragment, and its plane is its Newell plane through its
-    /// centroid: a face that is not planar within [`PLANE_TOLERANCE`] is kept whole
-    /// (its pieces, when other planes cut it, tile it in any projection), so that its
-    /// coverage stays that of its polygon (CONVENTIONS.md); the fragments of the
-    /// splitter's face all stay in its node. A face with a zero normal never splits
-    /// space; it goes to a side like any fragment.
+    /// halves of a split share the split point's vertex index). A planar face starts
+    /// as one fragment in its Newell plane through its centroid. A face that is not
+    /// planar within [`PLANE_TOLERANCE`] takes its depth from its fan triangles
+    /// `(v0, vk, vk+1)` (CONVENTIONS.md), so when it is strictly convex in its own
+    /// plane it starts as those triangles, each in its own plane (each extra triangle
+    /// counts in [`splits`](Self::splits)); otherwise it stays whole, in its Newell
+    /// plane. The fragments of the splitter's surface (face, or fan triangle) all
+    /// stay in its node. A face with a zero normal never splits space; it goes to a
+    /// side like any fragment.
+    ///
+    /// A face's fragments tile its polygon's even-odd coverage only by parity: seen
+    /// nearly edge-on, a non-planar face folds and two of its fragments overlap on
+    /// screen where the face covers nothing. The engines that draw a depth order
+    /// account for that (the code fill counts such a face by parity, the painter
+    /// clips its fragments to its polygon).
     ///
     /// The fragments are watertight: a split point is also inserted into every other
     /// fragment edge that lies on the same mesh edge (welded: ends compared by
@@ -303,7 +311,8 @@ impl<'s> BspTree<'s> {
         self.depth
     }
 
-    /// Fragment splits made: fragments minus the faces the build started from.
+    /// Fragment splits made: fragments minus the mesh's faces (a non-planar face
+    /// that starts as `t` fan triangles counts `t - 1`).
     pub fn splits(&self) -> usize {
         self.fragment_count().saturating_sub(self.pieces)
     }

@@ -1,7 +1,9 @@
 //! The iterative build of the BSP tree: the work stack of fragment sets, splitting.
 
 use super::bsp::{BspNode, BspOptions, BspStorage, BspTree, NO_NODE, PLANE_TOLERANCE};
-use super::plane::{exact_side, split_point, vertex, Fate, Plane, Record, Records, Side, Tally};
+use super::plane::{
+    exact_side, fans, split_point, vertex, Fate, Plane, Record, Records, Side, Tally,
+};
 use super::seams::{insert_seam_vertices, Seams};
 use crate::mesh::{Mesh, MAX_FACES};
 use crate::Error;
@@ -284,15 +286,31 @@ struct Build<'w, 'm, 'a> {
 }
 
 impl Build<'_, '_, '_> {
-    /// Pushes the root set: every face in order, whole (a face that is not planar
-    /// too: see [`BspTree::build_with`]). Returns the number of records.
+    /// Pushes the root set: every face in order, whole, or as its fan triangles when
+    /// it is not planar (see [`fans`] and [`BspTree::build_with`]). Returns the number
+    /// of faces.
     fn push_faces(&mut self) -> Result<usize, Error> {
         let mesh = self.mesh;
         let count = mesh.face_count();
-        let words = mesh
-            .indices()
-            .len()
-            .saturating_add(count.saturating_mul(Record::HEAD));
+        let tolerance_sq = self.tolerance_sq;
+        let fanned = |face: usize| fans(mesh, face, tolerance_sq);
+        let words = (0..count).fold(0usize, |words, face| {
+            let n = mesh.face(face).len();
+            let more = if fanned(face) {
+                (n - 2).saturating_mul(3 + Record::HEAD)
+            } else {
+                n + Record::HEAD
+            };
+            words.saturating_add(more)
+        });
+        let records = (0..count).fold(0usize, |records, face| {
+            let more = if fanned(face) {
+                mesh.face(face).len() - 2
+            } else {
+                1
+            };
+            records.saturating_add(more)
+        });
         let needed = words.saturating_add(HEADER);
         let capacity = self.work.len();
         let area = self
@@ -308,12 +326,21 @@ impl Build<'_, '_, '_> {
         };
         for face in 0..count {
             let corners = mesh.face(face);
-            // Face ids are below MAX_FACES < 2^16.
-            put(face as u32);
-            put(corners.len() as u32);
-            corners.iter().for_each(|&i| put(i));
+            if fanned(face) {
+                let v0 = corners.first().copied().unwrap_or(0);
+                for (k, pair) in corners.get(1..).unwrap_or(&[]).windows(2).enumerate() {
+                    put(Record::of_fan(face, k + 1));
+                    put(3);
+                    [v0].iter().chain(pair).for_each(|&i| put(i));
+                }
+            } else {
+                // Face ids are below MAX_FACES < 2^16.
+                put(face as u32);
+                put(corners.len() as u32);
+                corners.iter().for_each(|&i| put(i));
+            }
         }
-        for value in [words, count, NO_NODE as usize, 1] {
+        for value in [words, records, NO_NODE as usize, 1] {
             put(u32::try_from(value).unwrap_or(u32::MAX));
         }
         self.top = needed;
@@ -362,7 +389,7 @@ impl Build<'_, '_, '_> {
         // Pass 1: the sizes of the two child sets.
         let (mut front, mut back) = ((0usize, 0usize), (0usize, 0usize));
         for (word, idx) in Records::new(set) {
-            match Tally::of(&plane, idx, out.vertices).fate(Record::face(word) == splitter) {
+            match Tally::of(&plane, idx, out.vertices).fate(word == splitter) {
                 Fate::Node => {}
                 Fate::Front => front = (front.0 + idx.len() + Record::HEAD, front.1 + 1),
                 Fate::Back => back = (back.0 + idx.len() + Record::HEAD, back.1 + 1),
@@ -392,7 +419,7 @@ impl Build<'_, '_, '_> {
         let mut front_writer = Writer::new(front_area);
         let mut back_writer = Writer::new(back_area);
         for (word, idx) in Records::new(set) {
-            match Tally::of(&plane, idx, out.vertices).fate(Record::face(word) == splitter) {
+            match Tally::of(&plane, idx, out.vertices).fate(word == splitter) {
                 Fate::Node => out.emit(word, idx)?,
                 Fate::Front => front_writer.record(word, idx),
                 Fate::Back => back_writer.record(word, idx),
@@ -570,9 +597,10 @@ fn split(
 /// evenly over the set (skipping those of zero normal), the lowest score
 /// `split_weight * splits + |front - back|`, the earliest on a tie. If no candidate
 /// has a normal, the first record that has one; if none has, record 0 (a node of
-/// zero-normal fragments, which cover no pixels). Returns the splitter's source face
-/// and plane: every fragment of that face in the set goes to the node (a face that
-/// is not planar, cut earlier, keeps its pieces together in its plane's node).
+/// zero-normal fragments, which cover no pixels). Returns the splitter's surface (its
+/// record word: a face, or a fan triangle of one, see [`Record::fan`]) and plane:
+/// every fragment of that surface in the set goes to the node (a face that is not
+/// planar and kept whole, cut earlier, keeps its pieces together in its plane's node).
 fn choose_splitter(
     mesh: &Mesh<'_>,
     set: &[u32],
@@ -580,10 +608,10 @@ fn choose_splitter(
     options: &BspOptions,
     tolerance_sq: f64,
     vertices: &[[f32; 3]],
-) -> (usize, Plane) {
+) -> (u32, Plane) {
     let tries = usize::from(options.candidates.max(1));
     let weight = u64::from(options.split_weight);
-    let mut best: Option<(u64, usize, Plane)> = None;
+    let mut best: Option<(u64, u32, Plane)> = None;
     let mut next_try = 0usize; // index j of the next candidate ordinal j * count / tries
     for (ordinal, (word, _)) in Records::new(set).enumerate() {
         if next_try >= tries {
@@ -601,9 +629,8 @@ fn choose_splitter(
         }
         let bound = best.as_ref().map_or(u64::MAX, |b| b.0);
         let (mut splits, mut front, mut back) = (0u64, 0u64, 0u64);
-        let face = Record::face(word);
         for (other, idx) in Records::new(set) {
-            match Tally::of(&plane, idx, vertices).fate(Record::face(other) == face) {
+            match Tally::of(&plane, idx, vertices).fate(other == word) {
                 Fate::Node => {}
                 Fate::Front => front += 1,
                 Fate::Back => back += 1,
@@ -621,25 +648,17 @@ fn choose_splitter(
             .saturating_mul(splits)
             .saturating_add(front.abs_diff(back));
         if score < bound {
-            best = Some((score, face, plane));
+            best = Some((score, word, plane));
         }
     }
-    if let Some((_, face, plane)) = best {
-        return (face, plane);
+    if let Some((_, word, plane)) = best {
+        return (word, plane);
     }
     let first_with_normal = Records::new(set)
-        .map(|(word, _)| {
-            (
-                Record::face(word),
-                Plane::of_record(mesh, word, tolerance_sq),
-            )
-        })
+        .map(|(word, _)| (word, Plane::of_record(mesh, word, tolerance_sq)))
         .find(|(_, plane)| !plane.is_degenerate());
     first_with_normal.unwrap_or_else(|| {
         let word = set.first().copied().unwrap_or(0);
-        (
-            Record::face(word),
-            Plane::of_record(mesh, word, tolerance_sq),
-        )
+        (word, Plane::of_record(mesh, word, tolerance_sq))
     })
 }

@@ -23,3 +23,4 @@ pub use bsp::{
     work_bound, BspNode, BspOptions, BspSizes, BspStorage, BspTree, NO_NODE, PLANE_TOLERANCE,
 };
 pub use newell::{NewellOptions, NewellOrder, NewellSizes, NewellStorage};
+pub(crate) use plane::is_planar;

@@ -57,13 +57,26 @@ impl Plane {
         }
     }
 
-    /// The plane of a work record: that of its whole source face (Newell normal,
-    /// through the centroid), planar or not.
+    /// The plane of a work record: that of its surface (see [`Record::fan`]): the
+    /// whole source face's (Newell normal, through the centroid), planar or not, or
+    /// the plane of its fan triangle.
     pub fn of_record(mesh: &Mesh<'_>, word: u32, tolerance_sq: f64) -> Self {
         let corners = mesh.face(Record::face(word));
         let vertices = mesh.vertices();
         let position = move |i: &u32| vertices.get(*i as usize).map(|p| p.map(f64::from));
-        Self::through(corners.iter().filter_map(position), tolerance_sq)
+        match Record::fan(word) {
+            0 => Self::through(corners.iter().filter_map(position), tolerance_sq),
+            k => {
+                let triangle = [Some(0), Some(k), k.checked_add(1)];
+                let corner = move |at: Option<usize>| corners.get(at?).and_then(position);
+                Self::through(triangle.into_iter().filter_map(corner), tolerance_sq)
+            }
+        }
+    }
+
+    /// Is point `p` on this plane within the tolerance?
+    fn holds(&self, p: [f32; 3]) -> bool {
+        self.side_of(self.distance(p), p) == Side::On
     }
 
     /// Is the normal zero (a face of no area, which cannot split space)?
@@ -228,8 +241,56 @@ pub(super) fn split_point(vertices: &[[f32; 3]], a: u32, sa: f64, b: u32, sb: f6
     [px + t * (qx - px), py + t * (qy - py), pz + t * (qz - pz)].map(|c| c as f32)
 }
 
+/// Does face `face` enter the tree as its fan triangles `(v0, vk, vk+1)` rather than
+/// whole? Yes when it has four or more corners, is not planar within the tolerance,
+/// and is strictly convex in its own Newell plane: every turn and every fan triangle
+/// winds the way of its normal.
+///
+/// Why: CONVENTIONS.md gives a non-planar face the depth of the fan triangle a ray
+/// meets. Ordered as one plane, such a face misranks against a face that passes
+/// through its bulge (suzanne's quads); its fan triangles are planes and order
+/// exactly. The convexity keeps the coverage: the fan then tiles the polygon in its
+/// own plane and in every view that does not fold it (seen nearly edge-on, where one
+/// fan triangle turns its back while the face does not, the projected triangles
+/// overlap and cover that overlap where the polygon's parity does not). A face that
+/// is not convex keeps its polygon's coverage whole, and its plane's order.
+pub(super) fn fans(mesh: &Mesh<'_>, face: usize, tolerance_sq: f64) -> bool {
+    let corners = mesh.face(face);
+    let vertices = mesh.vertices();
+    let at = |i: u32| vertex(vertices, i);
+    if corners.len() < 4 || corners.len() > usize::from(u16::MAX) {
+        return false;
+    }
+    let whole = Plane::of_record(mesh, face as u32, tolerance_sq);
+    if whole.is_degenerate() || corners.iter().all(|&i| whole.holds(at(i))) {
+        return false;
+    }
+    let p = |k: usize| corners.get(k).map_or([0.0; 3], |&i| at(i).map(f64::from));
+    let n = corners.len();
+    let winds =
+        |a: [f64; 3], b: [f64; 3], c: [f64; 3]| dot(cross(sub(b, a), sub(c, b)), whole.n) > 0.0;
+    let turns = (0..n).all(|k| winds(p(k), p((k + 1) % n), p((k + 2) % n)));
+    let fan = (1..n - 1).all(|k| winds(p(0), p(k), p(k + 1)));
+    turns && fan
+}
+
+/// Is face `face` planar as the tree sees it (every corner on its Newell plane
+/// within [`PLANE_TOLERANCE`](super::PLANE_TOLERANCE), or a zero normal)? Only the
+/// fragments of a face that is not can overlap on screen (see [`fans`]).
+pub(crate) fn is_planar(mesh: &Mesh<'_>, face: usize) -> bool {
+    let tolerance = super::PLANE_TOLERANCE;
+    let whole = Plane::of_record(mesh, face as u32, tolerance * tolerance);
+    let vertices = mesh.vertices();
+    whole.is_degenerate()
+        || mesh
+            .face(face)
+            .iter()
+            .all(|&i| whole.holds(vertex(vertices, i)))
+}
+
 /// Work-stack records: `[word, len, idx_0 .. idx_len-1]`, where `word` holds the
-/// source face in its low 16 bits.
+/// source face in its low 16 bits and the fan triangle in its high 16 bits (see
+/// [`Record::fan`]).
 pub(super) struct Record;
 
 impl Record {
@@ -238,6 +299,18 @@ impl Record {
 
     pub fn face(word: u32) -> usize {
         (word & 0xFFFF) as usize
+    }
+
+    /// 0 for a record of a whole face (or its pieces); `k` for the fan triangle
+    /// `(v0, vk, vk+1)` of a face that is not planar (see [`fans`]). The whole word
+    /// names the planar surface a record lies on: records of one surface share a node.
+    pub fn fan(word: u32) -> usize {
+        (word >> 16) as usize
+    }
+
+    /// The word of fan triangle `k` of `face`.
+    pub fn of_fan(face: usize, k: usize) -> u32 {
+        ((k as u32) << 16) | (face as u32 & 0xFFFF)
     }
 }
 

@@ -3,7 +3,7 @@
 //! engines that sample rather than scan (area subdivision, ray casting, picking,
 //! sub-pixel coverage).
 
-use super::transform::ScreenVertex;
+use super::transform::{ProjectedVertex, ScreenVertex};
 
 /// Whether the point (`px`, `py`), in half sub-pixel units (`2^-(S+1)` px), is
 /// inside `poly` under the even-odd rule, a point on the boundary counting when the
@@ -43,7 +43,45 @@ pub(crate) fn covers(poly: &[ScreenVertex], px: i64, py: i64) -> bool {
 
 /// Whether the centre of pixel (`i`, `j`) is covered by `poly` at `s` sub-pixel bits.
 // For the sampling engines; only the tests use it so far.
-#[allow(dead_code)]
+/// May the fragments of a face with these corners overlap on screen? A depth order
+/// cuts a face that is not planar into fragments (its fan triangles, pieces along
+/// cutting chords); their parity always adds up to the face's even-odd coverage
+/// (CONVENTIONS.md), but an engine that draws each fragment on its own covers their
+/// overlap, where the face does not. (A planar face's pieces tile it in any view:
+/// callers ask this only of faces that are not.) They cannot overlap when the face
+/// projects to a strictly convex polygon, winding once (every turn and every fan
+/// triangle `(v0, vk, vk+1)` the same way): its fan triangles and every chord stay
+/// inside it. Anything else (a face seen nearly edge-on that folds, a concave
+/// projection, a corner clipped away) may.
+pub(crate) fn folded(corners: &[u32], vertices: &[ProjectedVertex]) -> bool {
+    let n = corners.len();
+    let at = |k: usize| {
+        let p = corners.get(k % n).and_then(|&v| vertices.get(v as usize))?;
+        (p.outside == 0).then_some((i64::from(p.screen.x), i64::from(p.screen.y)))
+    };
+    let sign = |a: (i64, i64), b: (i64, i64), c: (i64, i64)| {
+        ((b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0)).signum()
+    };
+    let Some(v0) = at(0) else { return true };
+    let mut way = 0;
+    for k in 0..n {
+        let (Some(a), Some(b), Some(c)) = (at(k), at(k + 1), at(k + 2)) else {
+            return true;
+        };
+        let turn = sign(a, b, c);
+        let fan = if (1..n.saturating_sub(1)).contains(&k) {
+            sign(v0, a, b)
+        } else {
+            turn
+        };
+        if turn == 0 || fan != turn || (way != 0 && turn != way) {
+            return true;
+        }
+        way = turn;
+    }
+    false
+}
+
 pub(crate) fn covers_centre(poly: &[ScreenVertex], s: u32, i: i64, j: i64) -> bool {
     let h = 1i64 << s;
     covers(poly, (2 * i + 1) * h, (2 * j + 1) * h)

@@ -13,6 +13,7 @@ use heapless::Vec;
 
 use super::codefill::DepthOrder;
 use super::compose::{FrameProbe, Palette};
+use super::coverage::{covers_centre, folded};
 use super::idpass::{render_ids, FrameInput, IdPass, IdWorkspace};
 use super::transform::{ProjectedVertex, ScreenVertex};
 use super::zband::IdBand;
@@ -20,6 +21,7 @@ use super::{bit, index_polygon, need, FrameCtx, Settings, Stats};
 use crate::camera::Camera;
 use crate::geometry::Subpixel;
 use crate::mesh::{EdgeAdjacency, Mesh};
+use crate::order::is_planar;
 use crate::{Error, FillRule, ScanConverter, ScreenPoint, Span, SpanSink, Viewport};
 
 /// The list a [`PainterRenderer`] paints.
@@ -179,6 +181,7 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> IdPass
     ) -> Result<u32, Error> {
         let mut poly: Vec<ScreenVertex, POLY> = Vec::new();
         let mut points: Vec<ScreenPoint<Frac>, POLY> = Vec::new();
+        let mut whole: Vec<ScreenVertex, POLY> = Vec::new();
         let rows = band.first..band.first + band.held;
         let mut spans = 0;
         for i in 0..self.len {
@@ -192,7 +195,14 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> IdPass
             if !reaches(&poly, ctx.s, &rows) {
                 continue;
             }
-            let id = (self.source(k) + 1) as u16;
+            let source = self.source(k);
+            let id = (source + 1) as u16;
+            // A depth order's fragments of a face that may fold here are painted only
+            // where the face's polygon covers (its parity), not in their overlap.
+            let clip_to_face = self.source.is_some()
+                && folded(ctx.mesh.face(source), vertices)
+                && !is_planar(ctx.mesh, source)
+                && index_polygon(ctx, vertices, ctx.mesh.face(source), &mut whole)?;
             points.clear();
             for v in &poly {
                 let _ = points.push(ScreenPoint::from_bits(v.x, v.y));
@@ -202,6 +212,7 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> IdPass
                 id,
                 viewport: ctx.viewport,
                 spans: 0,
+                within: clip_to_face.then_some((whole.as_slice(), ctx.s)),
             };
             self.scan
                 .fill_rows(
@@ -231,15 +242,17 @@ fn reaches(poly: &[ScreenVertex], s: u32, rows: &Range<u16>) -> bool {
     last >= i32::from(rows.start) && first < i32::from(rows.end)
 }
 
-/// A span sink that writes one id over a band's ids.
-struct IdSpans<'b, 's> {
+/// A span sink that writes one id over a band's ids (only at pixel centres the
+/// polygon `within` covers, when given, with its sub-pixel bits).
+struct IdSpans<'b, 's, 'w> {
     band: &'b mut IdBand<'s>,
     id: u16,
     viewport: Viewport,
     spans: u32,
+    within: Option<(&'w [ScreenVertex], u32)>,
 }
 
-impl SpanSink for IdSpans<'_, '_> {
+impl SpanSink for IdSpans<'_, '_, '_> {
     type Color = BinaryColor;
     type Error = core::convert::Infallible;
 
@@ -249,10 +262,22 @@ impl SpanSink for IdSpans<'_, '_> {
 
     fn fill_span(&mut self, span: Span, _: BinaryColor) -> Result<(), Self::Error> {
         self.spans += 1;
-        if let Some(start) = self.band.index(span.x0(), span.y()) {
-            let end = start + usize::from(span.len());
-            if let Some(ids) = self.band.ids.get_mut(start..end) {
-                ids.fill(self.id);
+        let Some(start) = self.band.index(span.x0(), span.y()) else {
+            return Ok(());
+        };
+        let end = start + usize::from(span.len());
+        let Some(ids) = self.band.ids.get_mut(start..end) else {
+            return Ok(());
+        };
+        match self.within {
+            None => ids.fill(self.id),
+            Some((poly, s)) => {
+                let (x0, y) = (i64::from(span.x0()), i64::from(span.y()));
+                for (x, id) in (x0..).zip(ids.iter_mut()) {
+                    if covers_centre(poly, s, x, y) {
+                        *id = self.id;
+                    }
+                }
             }
         }
         Ok(())

@@ -164,6 +164,10 @@ struct ActiveFace {
     /// rank in the frame's front-to-back order.
     pos: u16,
     rank: u32,
+    /// Its source face is not planar and may fold in this view (see
+    /// `coverage::folded`): its fragments can overlap on screen, and the face covers
+    /// a pixel only where an odd number of them do.
+    fold: bool,
     /// The row after its last.
     end: i32,
     plane: RowPlane,
@@ -224,6 +228,7 @@ const NO_FACE: ActiveFace = ActiveFace {
     bit: NO_BIT,
     pos: NO_BIT,
     rank: 0,
+    fold: false,
     end: 0,
     plane: RowPlane::ZERO,
 };

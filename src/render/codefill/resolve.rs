@@ -49,16 +49,47 @@ impl<
             n if n > Self::CODE_BITS => 0,
             // Depth order: the priority encoder.
             _ if self.priority => {
-                let bit = self
-                    .code
-                    .iter()
-                    .enumerate()
-                    .find(|(_, w)| **w != 0)
-                    .map_or(0, |(k, w)| 32 * k + w.trailing_zeros() as usize);
-                run.fill(self.owner(bit).id);
+                run.fill(self.nearest_covering());
                 1
             }
             _ => self.resolve_overlap(xa, xb, out),
+        }
+    }
+
+    /// Depth order: the id of the nearest face covering the run, from the lowest bit
+    /// set. A face whose fragments may overlap (`fold`) covers the run only if an odd
+    /// number of its fragments do; otherwise its bits are dropped and the next
+    /// lowest decides.
+    fn nearest_covering(&self) -> u16 {
+        let mut code = self.code;
+        loop {
+            let Some(bit) = code
+                .iter()
+                .enumerate()
+                .find(|(_, w)| **w != 0)
+                .map(|(k, w)| 32 * k + w.trailing_zeros() as usize)
+            else {
+                return 0;
+            };
+            let face = self.owner(bit);
+            if !face.fold {
+                return face.id;
+            }
+            let mut odd = false;
+            for (k, word) in code.iter_mut().enumerate() {
+                let mut bits = *word;
+                while bits != 0 {
+                    let b = bits.trailing_zeros() as usize;
+                    bits &= bits - 1;
+                    if self.owner(32 * k + b).id == face.id {
+                        odd = !odd;
+                        *word &= !(1 << b);
+                    }
+                }
+            }
+            if odd {
+                return face.id;
+            }
         }
     }
 

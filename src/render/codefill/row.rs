@@ -6,7 +6,9 @@ use heapless::Vec;
 use fixed::types::extra::LeEqU32;
 
 use super::{ActiveFace, CodeFillRenderer, Surfaces, NO_BIT, OVER};
+use crate::order::is_planar;
 use crate::render::active::ActiveEdge;
+use crate::render::coverage::folded;
 use crate::render::transform::{ProjectedVertex, ScreenVertex};
 use crate::render::zband::DepthPlane;
 use crate::render::{index_polygon, FrameCtx};
@@ -275,12 +277,17 @@ impl<
                 continue;
             }
             let rank = fill.rank(f);
+            let source = fill.source(f);
+            let fold = self.priority
+                && folded(ctx.mesh.face(source), vertices)
+                && !is_planar(ctx.mesh, source);
             if let Some(face) = self.faces.get_mut(usize::from(slot)) {
                 *face = ActiveFace {
-                    id: (fill.source(f) + 1) as u16,
+                    id: (source + 1) as u16,
                     bit: NO_BIT,
                     pos: NO_BIT,
                     rank,
+                    fold,
                     end,
                     plane: plane.row_plane(y),
                 };
