@@ -50,9 +50,13 @@
 //! sized with [`NewellSizes`]); the work is bounded by the storage (every split takes
 //! fragment slots) and by [`NewellOptions::max_steps`].
 
+mod obscure;
+mod settle;
 mod sort;
+mod split;
 #[cfg(test)]
 mod tests;
+mod view;
 
 use crate::camera::Camera;
 use crate::mesh::Mesh;

@@ -8,6 +8,7 @@ use std::vec::Vec;
 
 use fixed::types::extra::U4;
 
+use super::trace::{fold, Candidates, Hit};
 use super::*;
 use crate::mesh::{HalfEdgeRecord, MeshEdge};
 use crate::render::{Cull, DrawMode, MonoPalette, Workspace, ZBufferRenderer};
