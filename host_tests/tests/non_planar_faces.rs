@@ -60,7 +60,7 @@ fn orbit(cam0: &CameraSpec, k: usize) -> CameraSpec {
             cam0.eye[1] + lift,
             cam0.target[2] - s * d[0] + c * d[2],
         ],
-        ..cam0.clone()
+        ..*cam0
     }
 }
 

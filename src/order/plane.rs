@@ -261,10 +261,10 @@ pub(super) fn fans(mesh: &Mesh<'_>, face: usize, tolerance_sq: f64) -> bool {
     if corners.len() < 4 || corners.len() > usize::from(u16::MAX) {
         return false;
     }
-    let whole = Plane::of_record(mesh, face as u32, tolerance_sq);
-    if whole.is_degenerate() || corners.iter().all(|&i| whole.holds(at(i))) {
+    if is_planar(mesh, face) {
         return false;
     }
+    let whole = Plane::of_record(mesh, face as u32, tolerance_sq);
     let p = |k: usize| corners.get(k).map_or([0.0; 3], |&i| at(i).map(f64::from));
     let n = corners.len();
     let winds =
