@@ -1,9 +1,9 @@
 //! Paper 003's schemes 1 and 2 as an engine: each drawn face's surface code is
 //! added (modulo 2) into a row at its edge crossings, a running XOR left to right
 //! leaves at every pixel the XOR of the codes of the faces covering it, and the
-//! colour table of the scheme names the visible face. No depth is computed per frame: the depth order
-//! is in the codes, made once for a fixed scene whose occlusion graph is known (the
-//! paper's instrument panel).
+//! colour table of the scheme names the visible face. No depth is computed per
+//! frame: the depth order is in the codes, made once for a fixed scene whose
+//! occlusion graph is known (the paper's instrument panel).
 //!
 //! The crossings are the scan converter's span ends, the same spans the Z-buffer
 //! engine depth-tests, so a face covers exactly the pixels it covers there.
