@@ -212,12 +212,22 @@ fn random_quads_in_depth_order_are_drawn_as_the_z_buffer_draws_them() {
 
 #[test]
 fn procedural_scenes_with_a_depth_order_are_drawn_as_the_z_buffer_draws_them() {
+    // Drawn by (scheme 1, scheme 2); `boxes` interpenetrate and `coplanar` has tops
+    // the Z-buffer orders differently at different pixels (OrderConflict), `cyclic`
+    // has no depth levels (CyclicOrder; scheme 1 needs none).
+    let drawn = |name: &str| match name {
+        "boxes" | "coplanar" => [false, false],
+        "cyclic" => [true, false],
+        _ => [true, true],
+    };
     let mut compared = [0; 2];
     for scene in all_scenes() {
         for (w, h) in [(128, 64), (400, 240)] {
             let cam = scene.camera(w, h, false);
-            let counts =
-                same_or_refused(scene.name, &scene.mesh, &cam, &spec(w, h, ModeSpec::Dashed));
+            let spec = spec(w, h, ModeSpec::Dashed);
+            let counts = same_or_refused(scene.name, &scene.mesh, &cam, &spec);
+            let was_drawn = counts.map(|c| c > 0);
+            assert_eq!(was_drawn, drawn(scene.name), "{} {w}x{h}", scene.name);
             compared = [compared[0] + counts[0], compared[1] + counts[1]];
         }
     }
@@ -281,14 +291,19 @@ fn cyclic_overlap_has_no_depth_levels_for_scheme_2_but_scheme_1_needs_none() {
     // Scheme 1 decodes each pair by its own path: the right picture, no order needed.
     let (frame, figures) =
         render_scheme(&cyclic.mesh, &cam, &spec, SchemeSpec::Combination).unwrap();
-    assert!(assert_same("cyclic", &frame, &zbuffer(&cyclic.mesh, &cam, &spec)) > 10_000);
+    let compared = assert_same("cyclic", &frame, &zbuffer(&cyclic.mesh, &cam, &spec));
+    println!("cyclic sticks, scheme 1: {compared} covered pixels equal");
+    assert!(compared > 5_000, "{compared}");
     assert_eq!(figures.width, 3);
 }
 
 /// The models of /work/shared/models at both display sizes: whether each scheme can
 /// be set up for the fitted view, the width and table it needs, or the condition it
-/// breaks; a frame that is drawn must be the Z-buffer's.
+/// breaks; a frame that is drawn must be the Z-buffer's. Minutes on the larger models
+/// (the scheme-1 search on graphs of hundreds of paths), so run by hand:
+/// `cargo test --release -p host_tests --test code_schemes models_report -- --ignored --nocapture`
 #[test]
+#[ignore]
 fn models_report() {
     for name in [
         "suzanne", "woody", "beetle", "cow", "teapot", "spot", "fandisk",
