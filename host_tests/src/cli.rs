@@ -583,14 +583,14 @@ mod tests {
         assert_eq!(o.spec.pattern, "dots");
         assert_eq!(o.scheme, SchemeSpec::Priority);
         assert!(o.stats && o.hash && !o.fits());
-        let o = p(&["--scheme", "combination"]).unwrap();
-        assert_eq!(o.scheme, SchemeSpec::Combination);
-        let o = p(&["--engine=codefill", "--scheme=path"]).unwrap();
-        assert_eq!(o.scheme, SchemeSpec::Path);
         let c = o.camera(&cube()).unwrap();
         assert_eq!(c.up, [0.0, 0.0, 1.0]);
         assert_eq!(c.projection, ProjectionSpec::Perspective { fov_deg: 60.0 });
         assert_eq!((c.near, c.far), (0.5, 50.0));
+        let o = p(&["--scheme", "combination"]).unwrap();
+        assert_eq!(o.scheme, SchemeSpec::Combination);
+        let o = p(&["--engine=codefill", "--scheme=path"]).unwrap();
+        assert_eq!(o.scheme, SchemeSpec::Path);
         let o = p(&["--ortho", "2", "--eye", "0,0,5"]).unwrap();
         let c = o.camera(&cube()).unwrap();
         assert_eq!(
