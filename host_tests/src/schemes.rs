@@ -241,8 +241,8 @@ pub struct SchemeFigures {
     pub width: u32,
     /// Colour-table rows.
     pub table_rows: usize,
-    /// Scheme 1: narrower widths whose search gave up undecided (0: the width is the
-    /// least that works, every narrower one proven impossible).
+    /// Scheme 1: widths the search gave up on, undecided, before the one found (0:
+    /// the width is the least that works, every narrower one proven impossible).
     pub undecided_widths: u32,
 }
 
@@ -293,20 +293,26 @@ pub fn with_coding<R>(
 }
 
 /// Scheme-1 codes of the least width the search reaches: widths from the corollary's
-/// bound up, each searched with a budget of [`SEARCH_TRIALS`]. Returns how many
-/// narrower widths were left undecided (the library's `minimal_combination_codes`
-/// stops at the first; here the next width is tried).
+/// bound up, each searched with a budget of [`SEARCH_TRIALS`]; after a width the
+/// search gave up on, the next tried is a quarter wider (so a large graph costs a
+/// few budgets, not one per bit). Returns how many narrower widths were left
+/// undecided (the library's `minimal_combination_codes` stops at the first).
 fn combination_codes(graph: &OcclusionGraph<'_>, codes: &mut [u128]) -> Result<u32, Error> {
     let mut undecided = 0;
     let mut last = None;
-    for width in graph.largest_union().max(1)..=WIDTH {
+    let mut width = graph.largest_union().max(1);
+    while width <= WIDTH {
         match find_combination_codes::<WIDTH>(graph, width as u32, codes, SEARCH_TRIALS) {
             Ok(()) => return Ok(undecided),
             Err(e @ Error::Scheme(SchemeViolation::SearchGaveUp { .. })) => {
                 undecided += 1;
                 last = Some(e);
+                width += (width / 4).max(1);
             }
-            Err(e @ Error::Scheme(SchemeViolation::NoAssignment { .. })) => last = Some(e),
+            Err(e @ Error::Scheme(SchemeViolation::NoAssignment { .. })) => {
+                last = Some(e);
+                width += 1;
+            }
             Err(e) => return Err(e),
         }
     }

@@ -93,8 +93,8 @@ fn assert_same(name: &str, frame: &Frame, reference: &Frame) -> usize {
 fn describe(result: &Result<(Frame, SchemeFigures), SchemeError>) -> String {
     match result {
         Ok((_, f)) => format!(
-            "{} paths, longest {}, {} bits, {} table rows",
-            f.paths, f.longest_path, f.width, f.table_rows
+            "{} paths, longest {}, {} bits, {} table rows, {} narrower widths undecided",
+            f.paths, f.longest_path, f.width, f.table_rows, f.undecided_widths
         ),
         Err(e) => format!("refused: {e}"),
     }
@@ -125,6 +125,8 @@ fn fig2_is_drawn_by_all_three_schemes_as_the_z_buffer_draws_it() {
             let compared = assert_same(scheme.name(), &frame, &reference);
             assert!(compared > 10_000, "{compared} pixels compared");
             assert_eq!((figures.width, figures.table_rows), (width, rows));
+            // No narrower width left undecided: 3-bit codes proven impossible.
+            assert_eq!(figures.undecided_widths, 0);
             println!(
                 "fig. 2, {}: {} bits, {} table rows, {compared} covered pixels equal",
                 scheme.name(),
