@@ -162,7 +162,7 @@ pub struct Stats {
     /// Bytes of depth samples per band (0 for the code-fill engine).
     pub depth_buffer_bytes: u32,
     /// Code-fill engine: bits of the widest surface code a row needed (the most
-    /// faces covering one pixel).
+    /// faces covering one pixel). Schemes engine: the scheme's code width.
     pub code_bits: u32,
     /// Code-fill engine: the most faces active on one row.
     pub peak_faces: u32,

@@ -11,7 +11,14 @@
 //! Scheme 2 adds a path code per pixel: the paper changes it "each time a new
 //! screen-segment is entered", so the caller lends [`ScreenSegments`] naming the path
 //! of each pixel. A code the table does not list is an error naming the pixel, never
-//! a guessed face.
+//! a guessed face. The codes carry no more than the graph: a combination the graph
+//! omits whose XOR equals a listed code cannot be told from it (scheme 1 codes that
+//! are independent over all surfaces, unit vectors, leave no such combination).
+//!
+//! Scheme 3 needs no table for a single path: that is the code-fill engine
+//! ([`CodeFillRenderer`](super::CodeFillRenderer)) with a depth order. On several
+//! paths its codes depend on the path (a surface's depth rank there), so one code per
+//! face cannot be XORed across segments; it is not drawn here.
 
 use core::marker::PhantomData;
 
