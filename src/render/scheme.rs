@@ -18,7 +18,7 @@
 //! Scheme 3 needs no table for a single path: that is the code-fill engine
 //! ([`CodeFillRenderer`](super::CodeFillRenderer)) with a depth order. On several
 //! paths its codes depend on the path (a surface's depth rank there), so one code per
-//! face cannot be XORed across segments; it is not drawn here.
+//! face cannot be added across segments; it is not drawn here.
 
 use core::marker::PhantomData;
 
