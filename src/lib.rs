@@ -63,8 +63,8 @@ pub use order::{BspNode, BspSizes, BspStorage, BspTree};
 pub use pattern::Pattern;
 pub use render::{
     CodeFillRenderer, CodeWorkspace, Cull, DepthOrder, DrawMode, GreyPalette, GreyShades,
-    MonoPalette, Palette, Settings, SmallFace, SolidPalette, Stats, Visibility, Workspace,
-    ZBufferRenderer,
+    MonoPalette, Palette, SchemeCoding, SchemeRenderer, Settings, SmallFace, SolidPalette, Stats,
+    Visibility, Workspace, ZBufferRenderer,
 };
 pub use scan::{FillRule, ScanConverter};
 pub use span::{ContiguousRows, FillSolid, Span, SpanSink, ROW_SEGMENTS};

@@ -10,6 +10,7 @@ use crate::fit::fit_camera;
 use crate::frame::{
     CameraSpec, CullSpec, EngineSpec, MeshData, ModeSpec, ProjectionSpec, RenderSpec,
 };
+use crate::schemes::SchemeSpec;
 
 /// The usage text printed by `--help` and after a usage error.
 pub const USAGE: &str = "\
@@ -29,8 +30,13 @@ rendering
   --crease DEG         crease angle in [0, 180] (default 30)
   --cull on|off|auto   back-face culling (default auto: on for closed meshes)
   --mode M             wireframe | hidden | dashed | surfaces | surfaces+dashed (default dashed)
-  --engine E           codefill | codefill-crossings | scanline | zbuffer | painter | bsp
-                       (default codefill)
+  --engine E           codefill | codefill-crossings | scanline | zbuffer | painter | bsp |
+                       warnock | raycast | newell (default codefill)
+  --scheme S           with --engine codefill, paper 003's surface codes: priority (scheme 3:
+                       weight-1 codes in a BSP depth order, the default) | combination
+                       (scheme 1) | path (scheme 2): codes and colour table built for this
+                       view's occlusion graph; a view without a consistent depth order is
+                       refused with the condition it breaks (exit 1)
   --subpixel S         sub-pixel bits 0..=12 (default 4)
   --depth-bits 16|32   depth precision (default 32)
   --band ROWS          rows per depth band, 1..=height (default: the height)
@@ -93,6 +99,8 @@ pub struct Options {
     pub near: Option<f64>,
     pub far: Option<f64>,
     pub spec: RenderSpec,
+    /// `--scheme`: the surface codes of the code-fill engine.
+    pub scheme: SchemeSpec,
     /// `--band` as given (the default is the height, known after `--size`).
     pub band: Option<usize>,
     pub out: Option<PathBuf>,
@@ -121,6 +129,7 @@ impl Default for Options {
             near: None,
             far: None,
             spec: RenderSpec::default(),
+            scheme: SchemeSpec::default(),
             band: None,
             out: None,
             look: Look::default(),
@@ -174,7 +183,7 @@ fn size(s: &str) -> Result<(usize, usize), String> {
 }
 
 /// Flags that take a value.
-const VALUED: [&str; 23] = [
+const VALUED: [&str; 24] = [
     "--size",
     "--eye",
     "--target",
@@ -187,6 +196,7 @@ const VALUED: [&str; 23] = [
     "--cull",
     "--mode",
     "--engine",
+    "--scheme",
     "--subpixel",
     "--depth-bits",
     "--band",
@@ -310,6 +320,12 @@ where
                     format!("--engine: `{v}` is not one of {}", names.join(", "))
                 })?
             }
+            "--scheme" => {
+                o.scheme = SchemeSpec::by_name(&v).ok_or_else(|| {
+                    let names: Vec<&str> = SchemeSpec::ALL.iter().map(|s| s.name()).collect();
+                    format!("--scheme: `{v}` is not one of {}", names.join(", "))
+                })?
+            }
             "--subpixel" => o.spec.subpixel = int_in(flag, &v, 0, 12)? as u32,
             "--depth-bits" => {
                 o.spec.depth_bits = match v.as_str() {
@@ -360,6 +376,13 @@ where
     // Checks across flags.
     if o.fit && o.eye.is_some() {
         return Err("--fit: excludes --eye (the fitted camera chooses the eye)".into());
+    }
+    if o.scheme != SchemeSpec::Priority && o.spec.engine != EngineSpec::CodeFill {
+        return Err(format!(
+            "--scheme: {} is drawn by the code-fill engine; --engine {} has no surface codes",
+            o.scheme.name(),
+            o.spec.engine.name()
+        ));
     }
     match o.band {
         Some(b) if b > o.spec.height => {
@@ -558,11 +581,16 @@ mod tests {
         assert_eq!(o.spec.mode, ModeSpec::SurfacesDashed);
         assert_eq!((o.spec.subpixel, o.spec.depth_bits), (8, 16));
         assert_eq!(o.spec.pattern, "dots");
+        assert_eq!(o.scheme, SchemeSpec::Priority);
         assert!(o.stats && o.hash && !o.fits());
         let c = o.camera(&cube()).unwrap();
         assert_eq!(c.up, [0.0, 0.0, 1.0]);
         assert_eq!(c.projection, ProjectionSpec::Perspective { fov_deg: 60.0 });
         assert_eq!((c.near, c.far), (0.5, 50.0));
+        let o = p(&["--scheme", "combination"]).unwrap();
+        assert_eq!(o.scheme, SchemeSpec::Combination);
+        let o = p(&["--engine=codefill", "--scheme=path"]).unwrap();
+        assert_eq!(o.scheme, SchemeSpec::Path);
         let o = p(&["--ortho", "2", "--eye", "0,0,5"]).unwrap();
         let c = o.camera(&cube()).unwrap();
         assert_eq!(
@@ -589,6 +617,8 @@ mod tests {
             (&["--cull", "maybe"], "--cull"),
             (&["--mode", "solid"], "--mode"),
             (&["--engine", "phong"], "--engine"),
+            (&["--scheme", "gray"], "--scheme"),
+            (&["--scheme", "path", "--engine", "zbuffer"], "--scheme"),
             (&["--subpixel", "13"], "--subpixel"),
             (&["--depth-bits", "24"], "--depth-bits"),
             (&["--band", "0"], "--band"),

@@ -20,4 +20,5 @@ pub mod reference;
 pub mod reference3d;
 pub mod report;
 pub mod scenes;
+pub mod schemes;
 pub mod shapes;

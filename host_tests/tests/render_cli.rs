@@ -319,3 +319,31 @@ fn a_face_with_a_repeated_vertex_renders_as_the_conventions_allow() {
         .chunks(2)
         .any(|s| u16::from_be_bytes([s[0], s[1]]) == 1));
 }
+
+/// `--scheme`: schemes 1 and 2 draw the view they can order (the code width among the
+/// figures), and a view without a consistent order exits 1 naming the condition.
+#[test]
+fn scheme_flag_draws_or_names_the_broken_condition() {
+    let out = render(&[
+        "scene:cube",
+        "--scheme",
+        "path",
+        "--size",
+        "128x64",
+        "--stats",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("scheme_code_bits: 8"), "{text}");
+    let out = render(&["scene:boxes", "--scheme", "combination", "--size", "128x64"]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("order their shared surfaces differently"),
+        "{err}"
+    );
+}

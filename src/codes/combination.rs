@@ -106,8 +106,11 @@ pub(crate) fn first_violation<const W: usize>(
             return Ok(Some(SchemeViolation::PathDependent { path }));
         }
     }
-    for first in 0..paths {
-        for second in (first + 1..paths).filter(|&s| holds_newest(first) || holds_newest(s)) {
+    // Pairs with a path that holds `newest`: the outer loop visits only those (a
+    // search's recheck costs a row of pairs per such path, not every pair).
+    for first in (0..paths).filter(|&p| holds_newest(p)) {
+        for other in (0..paths).filter(|&o| o != first && !(o < first && holds_newest(o))) {
+            let (first, second) = (first.min(other), first.max(other));
             let union = graph.union(first, second).filter(known).map(code);
             if !independent::<W>(union)? {
                 return Ok(Some(SchemeViolation::PathUnionDependent { first, second }));

@@ -130,6 +130,26 @@ pub enum SchemeViolation {
         /// Candidate codes tried.
         trials: u64,
     },
+    /// A pixel's code is in no row of the colour table: the surfaces covering it are
+    /// on no path of the graph (the scene has an overlap the graph omits), or the
+    /// screen segment put the pixel on a path that does not hold them.
+    UnlistedCode {
+        /// The code the filler left at the pixel.
+        code: u128,
+        /// The pixel's column.
+        x: u16,
+        /// The pixel's row.
+        y: u16,
+    },
+    /// A screen segment names a path the graph does not have.
+    UnknownPath {
+        /// The path named.
+        path: usize,
+        /// The pixel's column.
+        x: u16,
+        /// The pixel's row.
+        y: u16,
+    },
 }
 
 impl fmt::Display for SchemeViolation {
@@ -181,6 +201,16 @@ impl fmt::Display for SchemeViolation {
             Self::SearchGaveUp { width, trials } => write!(
                 f,
                 "the search for {width}-bit codes gave up after {trials} trials"
+            ),
+            Self::UnlistedCode { code, x, y } => write!(
+                f,
+                "pixel ({x}, {y}) has code {code:#b}, which is in no row of the colour \
+                 table (an overlap the occlusion graph omits)"
+            ),
+            Self::UnknownPath { path, x, y } => write!(
+                f,
+                "the screen segment of pixel ({x}, {y}) names path {path}, which does \
+                 not exist"
             ),
         }
     }

@@ -4,9 +4,10 @@
 //! and the view's feature edges. Then a visibility engine fills the face ids of a
 //! band of rows: [`ZBufferRenderer`] (paper 000's depth buffer, in bands) or
 //! [`CodeFillRenderer`] (paper 003's modulo-2 surface codes, one row at a time, no
-//! depth buffer). The line pass draws the feature edges that reach the band into a
-//! visible and a hidden mask (the P-buffer pattern decides hidden pixels), and
-//! composition turns each row into spans.
+//! depth buffer) or [`SchemeRenderer`] (paper 003's schemes 1 and 2: codes made once
+//! for a fixed scene, decoded by a colour table). The line pass draws the feature
+//! edges that reach the band into a visible and a hidden mask (the P-buffer pattern
+//! decides hidden pixels), and composition turns each row into spans.
 
 mod abuffer;
 mod active;
@@ -18,6 +19,7 @@ mod lines;
 mod painter;
 mod pick;
 mod raycast;
+mod scheme;
 mod transform;
 mod warnock;
 mod zband;
@@ -35,6 +37,7 @@ pub use pick::{pick, Pick, PickWorkspace, PickedEdge};
 pub use raycast::{
     BvhNode, RayFace, RaycastFigures, RaycastRenderer, RaycastSizes, RaycastStorage,
 };
+pub use scheme::{OneSegment, SchemeCoding, SchemeRenderer, ScreenSegments};
 pub use transform::{ClipVertex, ProjectedVertex, ScreenVertex};
 pub use warnock::{WarnockArea, WarnockFace, WarnockRenderer, WarnockSizes, WarnockStorage};
 pub use zband::Depth;
@@ -159,7 +162,7 @@ pub struct Stats {
     /// Bytes of depth samples per band (0 for the code-fill engine).
     pub depth_buffer_bytes: u32,
     /// Code-fill engine: bits of the widest surface code a row needed (the most
-    /// faces covering one pixel).
+    /// faces covering one pixel). Schemes engine: the scheme's code width.
     pub code_bits: u32,
     /// Code-fill engine: the most faces active on one row.
     pub peak_faces: u32,

@@ -233,7 +233,7 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> IdPass
 }
 
 /// Whether a polygon can cover a pixel centre in `rows`.
-fn reaches(poly: &[ScreenVertex], s: u32, rows: &Range<u16>) -> bool {
+pub(super) fn reaches(poly: &[ScreenVertex], s: u32, rows: &Range<u16>) -> bool {
     let h = 1i32 << s;
     let (lo, hi) = poly.iter().fold((i32::MAX, i32::MIN), |(lo, hi), v| {
         (lo.min(v.y), hi.max(v.y))

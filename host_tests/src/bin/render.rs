@@ -27,6 +27,7 @@ use host_tests::grey::{render_grey, shades};
 use host_tests::image::{fnv1a64, packed_pixel, packed_stride, write_rgb_png};
 use host_tests::obj::{load_scene, workspace_root};
 use host_tests::pipeline::render_frame;
+use host_tests::schemes::{render_scheme, SchemeError, SchemeSpec};
 
 /// An error to report: the line to print and the exit status.
 struct Fail(String, u8);
@@ -148,8 +149,19 @@ fn run() -> Result<(), Fail> {
 
     // The frame.
     let t = Instant::now();
-    let frame =
-        render_frame(&mesh, &camera, &o.spec).map_err(|e| bad(format!("{scene_name}: {e}")))?;
+    let frame = if o.scheme == SchemeSpec::Priority {
+        render_frame(&mesh, &camera, &o.spec).map_err(|e| bad(format!("{scene_name}: {e}")))?
+    } else {
+        // A scheme the view cannot have (the named condition) is a rendering failure.
+        let (frame, _) = render_scheme(&mesh, &camera, &o.spec, o.scheme).map_err(|e| match e {
+            SchemeError::Library(e) => Fail(
+                format!("{scene_name}: --scheme {}: {e}", o.scheme.name()),
+                1,
+            ),
+            SchemeError::Host(e) => bad(format!("{scene_name}: {e}")),
+        })?;
+        frame
+    };
     let time_us = t.elapsed().as_micros();
     let (w, h) = (o.spec.width, o.spec.height);
     if frame.width != w
