@@ -10,7 +10,8 @@
 //! nearly edge-on, one fan triangle turns its back), and each fragment drawn on its own
 //! covered that overlap, where the polygon's parity does not (wrong faces). The code
 //! fill now counts a face whose fragments may overlap by parity, and the painter paints
-//! such a face's fragments only where its polygon covers.
+//! such a face's fragments only where its polygon covers. Random twisted quads (many
+//! crossing each other) check the same against the Z-buffer's counts.
 //!
 //! `cargo test --release -p host_tests --test non_planar_faces -- --nocapture`
 
@@ -19,7 +20,9 @@ use std::path::PathBuf;
 use host_tests::frame::{CameraSpec, EngineSpec, MeshData, ModeSpec, ProjectionSpec, RenderSpec};
 use host_tests::metrics::{compare, SurfaceMetrics};
 use host_tests::pipeline::render_frame;
+use host_tests::random::Rng;
 use host_tests::reference3d::reference_frame;
+use host_tests::shapes::bounds;
 
 /// Surface counts of `engine` against the reference: holes, wrong faces, depth-order
 /// errors, far differences, and the reference's covered pixels.
@@ -187,5 +190,96 @@ fn a_quad_folded_edge_on_shows_what_is_behind_its_overlap() {
         let c = counts(&mesh, &cam, w, h, engine);
         println!("folded quad {}: {c:?}", engine.name());
         assert_eq!(c[..4], [0, 0, 0, 0], "{}", engine.name());
+    }
+}
+
+/// Random twisted quads (a parallelogram with one corner lifted off its plane by up
+/// to 40 % of its size; some lifts make the quad concave in its own plane too),
+/// seen from a random side at a random size, perspective or orthographic.
+fn twisted_quads(rng: &mut Rng) -> (MeshData, CameraSpec, usize, usize) {
+    let mut mesh = MeshData::default();
+    let mut point = |rng: &mut Rng| [0; 3].map(|_| rng.range(-1.0, 1.0));
+    for _ in 0..3 + rng.below(20) {
+        let base = mesh.vertices.len() as u32;
+        let (a, b, c) = (point(rng), point(rng), point(rng));
+        let lift = [0; 3].map(|_| rng.range(-0.4, 0.4));
+        let d = [0, 1, 2].map(|i| a[i] + c[i] - b[i] + lift[i]);
+        mesh.vertices.extend([a, b, c, d]);
+        mesh.faces.push((base..base + 4).collect());
+    }
+    let (w, h) = (16 + rng.below(300) as usize, 16 + rng.below(200) as usize);
+    let (centre, r) = bounds(&mesh);
+    let dir = loop {
+        let d = [0; 3].map(|_| rng.range(-1.0, 1.0));
+        let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        if len > 0.2 && (d[1] / len).abs() < 0.95 {
+            break d.map(|x| x / len);
+        }
+    };
+    let dist = r * rng.range(1.5, 4.0);
+    let projection = if rng.chance(0.3) {
+        ProjectionSpec::Orthographic {
+            half_height: r * (h as f64 / w as f64).max(1.0),
+        }
+    } else {
+        ProjectionSpec::Perspective {
+            fov_deg: rng.range(30.0, 80.0),
+        }
+    };
+    let cam = CameraSpec {
+        eye: [0, 1, 2].map(|i| centre[i] + dir[i] * dist),
+        target: centre,
+        up: [0.0, 1.0, 0.0],
+        projection,
+        near: 0.05,
+        far: dist + 2.0 * r,
+    };
+    (mesh, cam, w, h)
+}
+
+#[test]
+fn random_twisted_quads_in_a_bsp_order_are_as_faithful_as_the_z_buffer() {
+    let mut rng = Rng::new(0x7157_ed00);
+    let engines = [EngineSpec::CodeFill, EngineSpec::Bsp, EngineSpec::ZBuffer];
+    let mut total = [[0usize; 5]; 3];
+    for k in 0..200 {
+        let (mesh, cam, w, h) = twisted_quads(&mut rng);
+        for (e, &engine) in engines.iter().enumerate() {
+            let c = counts(&mesh, &cam, w, h, engine);
+            if c[..4].iter().any(|&n| n > 0) && engine != EngineSpec::ZBuffer {
+                println!("scene {k} {}: {c:?}", engine.name());
+            }
+            for (t, n) in total[e].iter_mut().zip(c) {
+                *t += n;
+            }
+        }
+    }
+    for (engine, t) in engines.iter().zip(total) {
+        println!(
+            "{:>8}: holes {} wrong {} depth-order {} far {} (of {} covered pixels, 200 scenes)",
+            engine.name(),
+            t[0],
+            t[1],
+            t[2],
+            t[3],
+            t[4]
+        );
+    }
+    let zbuffer = total[2];
+    assert!(zbuffer[4] > 300_000, "the scenes cover too little");
+    // The orders: no wrong face, no more holes than the Z-buffer, and depth-order
+    // errors and far differences only where two quads cross (the tree cuts them in
+    // f64, the reference meets them exactly): measured 2 + 47 of 378,765. (The
+    // Z-buffer gives each face one plane, its largest fan triangle's: 2,151 + 3,547
+    // here, reported, not asserted.)
+    for t in &total[..2] {
+        assert_eq!(t[1], 0, "wrong faces");
+        assert!(
+            t[0] <= zbuffer[0],
+            "holes {} > the Z-buffer's {}",
+            t[0],
+            zbuffer[0]
+        );
+        assert!(t[2] + t[3] <= 100, "depth-order {} + far {}", t[2], t[3]);
     }
 }

@@ -55,6 +55,9 @@ pub(crate) fn covers(poly: &[ScreenVertex], px: i64, py: i64) -> bool {
 /// projection, a corner clipped away) may.
 pub(crate) fn folded(corners: &[u32], vertices: &[ProjectedVertex]) -> bool {
     let n = corners.len();
+    if n < 3 {
+        return true;
+    }
     let at = |k: usize| {
         let p = corners.get(k % n).and_then(|&v| vertices.get(v as usize))?;
         (p.outside == 0).then_some((i64::from(p.screen.x), i64::from(p.screen.y)))
