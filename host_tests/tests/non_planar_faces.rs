@@ -198,7 +198,7 @@ fn a_quad_folded_edge_on_shows_what_is_behind_its_overlap() {
 /// seen from a random side at a random size, perspective or orthographic.
 fn twisted_quads(rng: &mut Rng) -> (MeshData, CameraSpec, usize, usize) {
     let mut mesh = MeshData::default();
-    let mut point = |rng: &mut Rng| [0; 3].map(|_| rng.range(-1.0, 1.0));
+    let point = |rng: &mut Rng| [0; 3].map(|_| rng.range(-1.0, 1.0));
     for _ in 0..3 + rng.below(20) {
         let base = mesh.vertices.len() as u32;
         let (a, b, c) = (point(rng), point(rng), point(rng));
