@@ -4,6 +4,8 @@
 //! sub-pixel coverage).
 
 use super::transform::{ProjectedVertex, ScreenVertex};
+use crate::mesh::Mesh;
+use crate::order::is_planar;
 
 /// Whether the point (`px`, `py`), in half sub-pixel units (`2^-(S+1)` px), is
 /// inside `poly` under the even-odd rule, a point on the boundary counting when the
@@ -47,8 +49,8 @@ pub(crate) fn covers(poly: &[ScreenVertex], px: i64, py: i64) -> bool {
 /// cuts a face that is not planar into fragments (its fan triangles, pieces along
 /// cutting chords); their parity always adds up to the face's even-odd coverage
 /// (CONVENTIONS.md), but an engine that draws each fragment on its own covers their
-/// overlap, where the face does not. (A planar face's pieces tile it in any view:
-/// callers ask this only of faces that are not.) They cannot overlap when the face
+/// overlap, where the face does not. (A planar face's pieces tile it in any view;
+/// [`fragments_may_overlap`] asks this together with planarity.) They cannot overlap when the face
 /// projects to a strictly convex polygon, winding once (every turn and every fan
 /// triangle `(v0, vk, vk+1)` the same way): its fan triangles and every chord stay
 /// inside it. Anything else (a face seen nearly edge-on that folds, a concave
@@ -83,6 +85,19 @@ pub(crate) fn folded(corners: &[u32], vertices: &[ProjectedVertex]) -> bool {
         way = turn;
     }
     false
+}
+
+/// Do the fragments a depth order made of mesh face `face` possibly overlap on screen
+/// in this view, so that the face covers a pixel only where an odd number of them do?
+/// Only a face that is not planar can (a triangle never is), and only where it may
+/// fold ([`folded`]); the planarity test is the tree's own, asked last (it is f64).
+pub(crate) fn fragments_may_overlap(
+    mesh: &Mesh<'_>,
+    face: usize,
+    vertices: &[ProjectedVertex],
+) -> bool {
+    let corners = mesh.face(face);
+    corners.len() > 3 && folded(corners, vertices) && !is_planar(mesh, face)
 }
 
 pub(crate) fn covers_centre(poly: &[ScreenVertex], s: u32, i: i64, j: i64) -> bool {

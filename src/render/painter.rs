@@ -13,7 +13,7 @@ use heapless::Vec;
 
 use super::codefill::DepthOrder;
 use super::compose::{FrameProbe, Palette};
-use super::coverage::{covers_centre, folded};
+use super::coverage::{covers_centre, fragments_may_overlap};
 use super::idpass::{render_ids, FrameInput, IdPass, IdWorkspace};
 use super::transform::{ProjectedVertex, ScreenVertex};
 use super::zband::IdBand;
@@ -21,7 +21,6 @@ use super::{bit, index_polygon, need, FrameCtx, Settings, Stats};
 use crate::camera::Camera;
 use crate::geometry::Subpixel;
 use crate::mesh::{EdgeAdjacency, Mesh};
-use crate::order::is_planar;
 use crate::{Error, FillRule, ScanConverter, ScreenPoint, Span, SpanSink, Viewport};
 
 /// The list a [`PainterRenderer`] paints.
@@ -200,8 +199,7 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> IdPass
             // A depth order's fragments of a face that may fold here are painted only
             // where the face's polygon covers (its parity), not in their overlap.
             let clip_to_face = self.source.is_some()
-                && folded(ctx.mesh.face(source), vertices)
-                && !is_planar(ctx.mesh, source)
+                && fragments_may_overlap(ctx.mesh, source, vertices)
                 && index_polygon(ctx, vertices, ctx.mesh.face(source), &mut whole)?;
             points.clear();
             for v in &poly {

@@ -6,9 +6,8 @@ use heapless::Vec;
 use fixed::types::extra::LeEqU32;
 
 use super::{ActiveFace, CodeFillRenderer, Surfaces, NO_BIT, OVER};
-use crate::order::is_planar;
 use crate::render::active::ActiveEdge;
-use crate::render::coverage::folded;
+use crate::render::coverage::fragments_may_overlap;
 use crate::render::transform::{ProjectedVertex, ScreenVertex};
 use crate::render::zband::DepthPlane;
 use crate::render::{index_polygon, FrameCtx};
@@ -278,9 +277,7 @@ impl<
             }
             let rank = fill.rank(f);
             let source = fill.source(f);
-            let fold = self.priority
-                && folded(ctx.mesh.face(source), vertices)
-                && !is_planar(ctx.mesh, source);
+            let fold = self.priority && fragments_may_overlap(ctx.mesh, source, vertices);
             if let Some(face) = self.faces.get_mut(usize::from(slot)) {
                 *face = ActiveFace {
                     id: (source + 1) as u16,
