@@ -294,22 +294,17 @@ impl Build<'_, '_, '_> {
         let count = mesh.face_count();
         let tolerance_sq = self.tolerance_sq;
         let fanned = |face: usize| fans(mesh, face, tolerance_sq);
-        let words = (0..count).fold(0usize, |words, face| {
+        let (words, records) = (0..count).fold((0usize, 0usize), |(words, records), face| {
             let n = mesh.face(face).len();
-            let more = if fanned(face) {
-                (n - 2).saturating_mul(3 + Record::HEAD)
+            let (more_words, more_records) = if fanned(face) {
+                ((n - 2).saturating_mul(3 + Record::HEAD), n - 2)
             } else {
-                n + Record::HEAD
+                (n + Record::HEAD, 1)
             };
-            words.saturating_add(more)
-        });
-        let records = (0..count).fold(0usize, |records, face| {
-            let more = if fanned(face) {
-                mesh.face(face).len() - 2
-            } else {
-                1
-            };
-            records.saturating_add(more)
+            (
+                words.saturating_add(more_words),
+                records.saturating_add(more_records),
+            )
         });
         let needed = words.saturating_add(HEADER);
         let capacity = self.work.len();

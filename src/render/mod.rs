@@ -21,6 +21,8 @@ mod pick;
 mod raycast;
 mod scheme;
 mod transform;
+#[cfg(test)]
+mod two_squares;
 mod warnock;
 mod zband;
 mod zbuffer;

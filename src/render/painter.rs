@@ -290,92 +290,26 @@ mod tests {
 
     use fixed::types::extra::U4;
 
+    use super::super::two_squares::{count, frame, squares};
     use super::*;
-    use crate::mesh::{HalfEdgeRecord, MeshEdge};
-    use crate::render::{Cull, DrawMode, MonoPalette};
-    use crate::{PackedFramebuffer, Pattern, Projection};
-
-    /// Keeps the frame's face ids.
-    struct Ids(Vec<u16>);
-
-    impl FrameProbe for Ids {
-        fn row(&mut self, y: u16, ids: &[u16], _: &[u32], _: &[u32]) {
-            let at = usize::from(y) * 32;
-            self.0[at..at + 32].copy_from_slice(ids);
-        }
-    }
-
-    /// Two squares seen from +z (orthographic, 32 x 32 px over [-2, 2]^2): face 0 at
-    /// depth `z0`, x in [-1.5, 0.5]; face 1 at depth `z1`, x in [-0.5, 1.5].
-    fn squares(z0: f32, z1: f32) -> (Vec<[f32; 3]>, Vec<u32>, Vec<u32>) {
-        let sq = |x0: f32, z: f32| {
-            [
-                [x0, -1.0, z],
-                [x0 + 2.0, -1.0, z],
-                [x0 + 2.0, 1.0, z],
-                [x0, 1.0, z],
-            ]
-        };
-        let v: Vec<[f32; 3]> = sq(-1.5, z0).into_iter().chain(sq(-0.5, z1)).collect();
-        (v, (0..8).collect(), vec![0, 4, 8])
-    }
+    use crate::render::MonoPalette;
 
     fn paint(v: &[[f32; 3]], idx: &[u32], off: &[u32], list_len: usize) -> Result<Vec<u16>, Error> {
-        let mesh = Mesh::new(v, idx, off).unwrap();
-        let mut weld = vec![0u32; v.len()];
-        let mut scratch = vec![HalfEdgeRecord::default(); idx.len()];
-        let mut store = vec![MeshEdge::default(); idx.len()];
-        let adj = EdgeAdjacency::build(&mesh, 30.0, &mut weld, &mut scratch, &mut store).unwrap();
-        let camera = Camera::new(
-            [0.0, 0.0, 5.0],
-            [0.0; 3],
-            [0.0, 1.0, 0.0],
-            Projection::Orthographic { half_height: 2.0 },
-            0.5,
-            20.0,
-        )
-        .unwrap();
-        let settings = Settings {
-            mode: DrawMode::Surfaces,
-            cull: Cull::Off,
-            pattern: Pattern::PAPER,
-        };
-        let mut vertices = vec![ProjectedVertex::default(); v.len()];
-        let (mut drawn, mut features) = (vec![0u32; 1], vec![0u32; 1]);
-        let (mut ids, mut lines) = (vec![0u16; 32 * 32], vec![0u32; 2 * 32]);
-        let mut ws = IdWorkspace {
-            vertices: &mut vertices,
-            drawn: &mut drawn,
-            features: &mut features,
-            ids: &mut ids,
-            lines: &mut lines,
-        };
-        let mut fb = PackedFramebuffer::<32, 32, { crate::packed_len(32, 32) }>::new();
-        let mut probe = Ids(vec![0; 32 * 32]);
-        let mut list = vec![0u64; list_len];
-        PainterRenderer::<U4, 16, 16>::new()
-            .render(
-                &mesh,
-                &adj,
-                &camera,
-                &settings,
-                &mut ws,
+        frame(v, idx, off, |mesh, adj, camera, settings, ws, fb, probe| {
+            let mut list = vec![0u64; list_len];
+            PainterRenderer::<U4, 16, 16>::new().render(
+                mesh,
+                adj,
+                camera,
+                settings,
+                ws,
                 PaintOrder::FarthestDepth,
                 &mut list,
                 &MonoPalette::default(),
-                &mut fb,
-                &mut probe,
+                fb,
+                probe,
             )
-            .map_err(|e| match e {
-                Error::Target(never) => match never {},
-                other => other.widen(),
-            })?;
-        Ok(probe.0)
-    }
-
-    /// Pixels of row 16 showing face `id` (1 + index) in columns 0..32: 8 px per unit.
-    fn count(ids: &[u16], id: u16) -> usize {
-        ids[16 * 32..17 * 32].iter().filter(|&&i| i == id).count()
+        })
     }
 
     #[test]
