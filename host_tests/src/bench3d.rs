@@ -331,8 +331,9 @@ fn code_fill<
 ) -> Result<Drawn, Error<Infallible>> {
     type Engine<const C: usize, const F: usize, const E: usize> =
         CodeFillRenderer<U4, C, F, E, POLY>;
-    // Bit-sliced rows: every pixel's code, up to WORDS words.
-    let mut words = vec![0u32; if sliced { W * WORDS } else { 0 }];
+    // Bit-sliced rows: every pixel's code, up to WORDS words, and a bit per pixel.
+    let sliced_len = Engine::<WORDS, FACES, EDGES>::bit_sliced_len(W);
+    let mut words = vec![0u32; if sliced { sliced_len } else { 0 }];
     let faces = scene.mesh.face_count();
     let surfaces = bsp.map_or(scene.mesh, |(tree, _)| tree.fragments());
     let mut vertices = vec![ProjectedVertex::default(); surfaces.vertices().len()];

@@ -454,9 +454,16 @@ fn render_code_with<Frac: LeEqU32, const WORDS: usize>(
     let mut renderer = Box::new(Engine::<Frac, WORDS>::new());
     let mut target = PackedFrame::new(w, h);
     let mut probe = Collect::new(w, h);
-    // Bit-sliced rows: every pixel's code, up to WORDS words.
+    // Bit-sliced rows: every pixel's code, up to WORDS words, and a bit per pixel.
     let sliced = spec.engine == EngineSpec::CodeFill;
-    let mut words = vec![0u32; if sliced { w * WORDS } else { 0 }];
+    let mut words = vec![
+        0u32;
+        if sliced {
+            Engine::<Frac, WORDS>::bit_sliced_len(w)
+        } else {
+            0
+        }
+    ];
     let codes = if sliced {
         RowCodes::BitSliced(&mut words)
     } else {

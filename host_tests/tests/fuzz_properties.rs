@@ -119,7 +119,7 @@ fn render_code_in<F: LeEqU32>(
         ids: &mut ids,
         lines: &mut lines,
     };
-    let mut words = vec![0u32; w];
+    let mut words = vec![0u32; Code::<F>::bit_sliced_len(w)];
     let codes = if sliced {
         RowCodes::BitSliced(&mut words)
     } else {

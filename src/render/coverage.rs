@@ -67,14 +67,23 @@ pub(crate) fn folded(corners: &[u32], vertices: &[ProjectedVertex]) -> bool {
     let sign = |a: (i64, i64), b: (i64, i64), c: (i64, i64)| {
         ((b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0)).signum()
     };
-    let Some(v0) = at(0) else { return true };
+    // Each corner is read once: (a, b, c) slides along, wrapping to v0 and v1.
+    let (Some(v0), Some(v1)) = (at(0), at(1)) else {
+        return true;
+    };
+    let (mut a, mut b) = (v0, v1);
     let mut way = 0;
     for k in 0..n {
-        let (Some(a), Some(b), Some(c)) = (at(k), at(k + 1), at(k + 2)) else {
-            return true;
+        let c = match k + 2 {
+            next if next < n => match at(next) {
+                Some(c) => c,
+                None => return true,
+            },
+            next if next == n => v0,
+            _ => v1,
         };
         let turn = sign(a, b, c);
-        let fan = if (1..n.saturating_sub(1)).contains(&k) {
+        let fan = if (1..n - 1).contains(&k) {
             sign(v0, a, b)
         } else {
             turn
@@ -83,6 +92,7 @@ pub(crate) fn folded(corners: &[u32], vertices: &[ProjectedVertex]) -> bool {
             return true;
         }
         way = turn;
+        (a, b) = (b, c);
     }
     false
 }
@@ -98,6 +108,30 @@ pub(crate) fn fragments_may_overlap(
 ) -> bool {
     let corners = mesh.face(face);
     corners.len() > 3 && folded(corners, vertices) && !is_planar(mesh, face)
+}
+
+/// Whether some fan triangle `(v0, vk, vk+1)` of `poly` has an area: the test
+/// `DepthPlane::new` makes before it sets up a plane (a polygon without one covers
+/// no pixel), for an engine that needs no plane.
+pub(crate) fn has_area(poly: &[ScreenVertex]) -> bool {
+    let Some(v0) = poly.first() else {
+        return false;
+    };
+    let d = |v: &ScreenVertex| {
+        (
+            i64::from(v.x) - i64::from(v0.x),
+            i64::from(v.y) - i64::from(v0.y),
+        )
+    };
+    poly.get(1..).is_some_and(|rest| {
+        rest.windows(2).any(|pair| match pair {
+            [a, b] => {
+                let ((x1, y1), (x2, y2)) = (d(a), d(b));
+                x1.wrapping_mul(y2) != x2.wrapping_mul(y1)
+            }
+            _ => false,
+        })
+    })
 }
 
 pub(crate) fn covers_centre(poly: &[ScreenVertex], s: u32, i: i64, j: i64) -> bool {

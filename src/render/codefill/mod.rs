@@ -75,9 +75,11 @@ pub enum RowCodes<'s> {
     /// edges on a row, and the code is as wide as the most faces over one pixel.
     /// The default ([`CodeFillRenderer::render`]).
     Crossings,
-    /// Every pixel's code in machine words (a running XOR a word at a time): work
-    /// grows with the pixels; the code is as wide as the faces active on a row. The
-    /// buffer holds width x ceil(active faces / 32) words.
+    /// Every crossed pixel's code in machine words (a running XOR a word at a time
+    /// over the pixels crossed): no sort; the code is as wide as the faces active
+    /// on a row. The buffer holds width x ceil(active faces / 32) words, then
+    /// ceil(width / 32) (a bit per pixel); [`CodeFillRenderer::bit_sliced_len`]
+    /// gives the length for a full code.
     BitSliced(&'s mut [u32]),
 }
 
@@ -255,6 +257,12 @@ impl<
             + 4 * size_of::<usize>()
     }
 
+    /// Words of a [`RowCodes::BitSliced`] buffer for rows `width` pixels wide and
+    /// codes of up to [`Self::CODE_BITS`] bits.
+    pub const fn bit_sliced_len(width: usize) -> usize {
+        width * WORDS + width.div_ceil(32)
+    }
+
     /// Empty working memory.
     pub const fn new() -> Self {
         Self {
@@ -406,6 +414,10 @@ impl<
         };
         let order = order.get(..faces).unwrap_or(&[]);
         self.begin();
+        if let RowCodes::BitSliced(words) = &mut codes {
+            // Each row leaves the buffer as it found it: all zero.
+            words.fill(0);
+        }
         let mut band = IdBand::new(ids, width);
         let mut masks = LineMasks {
             words: lines,

@@ -7,9 +7,9 @@ use fixed::types::extra::LeEqU32;
 
 use super::{ActiveFace, CodeFillRenderer, Surfaces, NO_BIT, OVER};
 use crate::render::active::ActiveEdge;
-use crate::render::coverage::fragments_may_overlap;
+use crate::render::coverage::{fragments_may_overlap, has_area};
 use crate::render::transform::{ProjectedVertex, ScreenVertex};
-use crate::render::zband::DepthPlane;
+use crate::render::zband::{DepthPlane, RowPlane};
 use crate::render::{index_polygon, FrameCtx};
 use crate::scan::edge::{Edge, EdgeLine};
 use crate::scan::RowRange;
@@ -211,7 +211,9 @@ impl<
                 }
                 let _ = self.free.push(f);
             } else {
-                face.plane.step();
+                if !self.priority {
+                    face.plane.step();
+                }
                 k += 1;
             }
         }
@@ -238,8 +240,17 @@ impl<
             if !index_polygon(ctx, vertices, fill.mesh.face(f), &mut poly)? {
                 continue;
             }
-            let Some(plane) = DepthPlane::new(&poly, ctx.s) else {
-                continue;
+            // A depth order compares no depths: a plane only where planes decide.
+            let plane = if self.priority {
+                if !has_area(&poly) {
+                    continue;
+                }
+                RowPlane::ZERO
+            } else {
+                match DepthPlane::new(&poly, ctx.s) {
+                    Some(plane) => plane.row_plane(y),
+                    None => continue,
+                }
             };
             let Some(&slot) = self.free.last() else {
                 return Err(Error::CapacityExceeded {
@@ -286,7 +297,7 @@ impl<
                     rank,
                     fold,
                     end,
-                    plane: plane.row_plane(y),
+                    plane,
                 };
             }
             self.free.pop();

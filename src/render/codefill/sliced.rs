@@ -2,8 +2,10 @@
 //! Each face active on the row holds one bit for the whole row (its place in the
 //! active list); each of its crossings XORs that bit into the code of the crossing's
 //! pixel, and a running XOR from the left, a word at a time, gives every pixel's code.
-//! No sort; the work grows with the pixels of a row rather than its crossings, and
-//! the code is as wide as the faces active on the row.
+//! A bit per pixel marks the pixels crossed, so the running XOR visits only those:
+//! no sort, work in proportion to the crossings times the code's words, and the
+//! code is as wide as the faces active on the row. The buffer is cleared as it is
+//! read; the frame clears it once before its first row.
 
 use fixed::types::extra::LeEqU32;
 
@@ -21,7 +23,7 @@ impl<
     > CodeFillRenderer<Frac, WORDS, FACES, EDGES, POLY>
 {
     /// As [`scan_row`](Self::scan_row), with the row's codes in `codes` (width x
-    /// words per pixel).
+    /// words per pixel, then a bit per pixel), all zero on entry and on return.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn scan_row_sliced(
         &mut self,
@@ -43,13 +45,15 @@ impl<
             self.step_row();
             return Ok(0);
         }
-        let Some(codes) = codes.get_mut(..width * words) else {
+        // The codes of the row's pixels, then one bit per pixel: a crossing there.
+        let need = width * words + width.div_ceil(32);
+        let Some(codes) = codes.get_mut(..need) else {
             return Err(Error::CapacityExceeded {
-                needed: width * words,
+                needed: need,
                 capacity: codes.len(),
             });
         };
-        codes.fill(0);
+        let (codes, crossed) = codes.split_at_mut(width * words);
         for (bit, &slot) in self.live.iter().enumerate() {
             if let Some(face) = self.faces.get_mut(usize::from(slot)) {
                 face.bit = bit as u16;
@@ -74,23 +78,48 @@ impl<
             if let Some(word) = codes.get_mut(x * words + usize::from(bit / 32)) {
                 *word ^= 1 << (bit % 32);
             }
+            if let Some(word) = crossed.get_mut(x / 32) {
+                *word |= 1 << (x % 32);
+            }
         }
-        // The running XOR, a word at a time; a run ends where some code changes.
+        // The running XOR over the pixels crossed only (work grows with the
+        // crossings, not the width); each is cleared as it is read, so the buffer is
+        // all zero again for the next row whatever its code width.
         self.code = [0; WORDS];
         self.inside = 0;
         let (mut xa, mut runs) = (0usize, 0u32);
-        for (x, toggles) in codes.chunks_exact(words.max(1)).enumerate().take(width) {
-            if toggles.iter().all(|&t| t == 0) {
-                continue;
+        for (w, word) in crossed.iter_mut().enumerate() {
+            let mut pixels = core::mem::take(word);
+            while pixels != 0 {
+                let x = 32 * w + pixels.trailing_zeros() as usize;
+                pixels &= pixels - 1;
+                let Some(toggles) = codes.get_mut(x * words..(x + 1) * words) else {
+                    continue;
+                };
+                if toggles.iter().all(|&t| t == 0) {
+                    continue;
+                }
+                if x > xa {
+                    runs += self.resolve(xa as u16, x as u16, out);
+                    xa = x;
+                }
+                // `resolve` tells only none, one and more apart (the code cannot
+                // exceed its capacity here): no count of bits (no instruction for it
+                // on a Cortex-M4).
+                let (mut set, mut single) = (0, false);
+                for (c, t) in self.code.iter_mut().zip(toggles.iter_mut()) {
+                    *c ^= core::mem::take(t);
+                    if *c != 0 {
+                        set += 1;
+                        single = *c & (*c - 1) == 0;
+                    }
+                }
+                self.inside = match set {
+                    0 => 0,
+                    1 if single => 1,
+                    _ => 2,
+                };
             }
-            if x > xa {
-                runs += self.resolve(xa as u16, x as u16, out);
-                xa = x;
-            }
-            for (c, &t) in self.code.iter_mut().zip(toggles) {
-                *c ^= t;
-            }
-            self.inside = self.code.iter().map(|c| c.count_ones() as usize).sum();
         }
         if xa < width {
             runs += self.resolve(xa as u16, width as u16, out);
