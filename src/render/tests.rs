@@ -281,9 +281,20 @@ fn code_fill<const WORDS: usize, const EDGES: usize>(mesh: &Mesh<'_>) -> Result<
     code_fill_with::<WORDS, EDGES>(mesh, Visibility::Planes, &mut ())
 }
 
-/// [`code_fill`] with a way to find the nearest face and a probe.
+/// [`code_fill_rows`] with the crossing list.
 fn code_fill_with<const WORDS: usize, const EDGES: usize>(
     mesh: &Mesh<'_>,
+    visibility: Visibility<'_>,
+    probe: &mut impl FrameProbe,
+) -> Result<Stats, Error> {
+    code_fill_rows::<WORDS, EDGES>(mesh, RowCodes::Crossings, visibility, probe)
+}
+
+/// [`code_fill`] with a row representation, a way to find the nearest face and a
+/// probe.
+fn code_fill_rows<const WORDS: usize, const EDGES: usize>(
+    mesh: &Mesh<'_>,
+    codes: RowCodes<'_>,
     visibility: Visibility<'_>,
     probe: &mut impl FrameProbe,
 ) -> Result<Stats, Error> {
@@ -327,12 +338,59 @@ fn code_fill_with<const WORDS: usize, const EDGES: usize>(
         &camera,
         &settings,
         &mut ws,
-        RowCodes::Crossings,
+        codes,
         visibility,
         &MonoPalette::default(),
         &mut fb,
         probe,
     )
+}
+
+/// Every face id of the 96x64 frame.
+struct FrameIds(Vec<u16>);
+
+impl FrameProbe for FrameIds {
+    fn row(&mut self, y: u16, ids: &[u16], _: &[u32], _: &[u32]) {
+        let at = usize::from(y) * 96;
+        self.0[at..at + 96].copy_from_slice(ids);
+    }
+}
+
+#[test]
+fn bit_sliced_rows_ignore_what_the_buffer_held_and_leave_it_clear() {
+    // Three stacked squares in a depth order that ranks square 1 first: the
+    // crossing list's frame is the reference.
+    let (v, idx, off) = stack(3);
+    let mesh = Mesh::new(&v, &idx, &off).unwrap();
+    let order = DepthOrder {
+        surfaces: mesh,
+        source: &[0, 1, 2],
+        rank: &[2, 0, 1],
+    };
+    let mut want = FrameIds(vec![0; 96 * 64]);
+    code_fill_with::<1, 64>(&mesh, Visibility::Order(order), &mut want).unwrap();
+    assert!(want.0.contains(&2));
+    // A buffer left full of ones by someone else: cleared once by the frame, and
+    // by each row as it reads it.
+    type Engine = CodeFillRenderer<U4, 1, 64, 64, 16>;
+    let len = Engine::bit_sliced_len(96);
+    assert_eq!(len, 96 + 3, "a word per pixel, then a bit per pixel");
+    let mut words = vec![u32::MAX; len];
+    let mut got = FrameIds(vec![0; 96 * 64]);
+    let codes = RowCodes::BitSliced(&mut words);
+    code_fill_rows::<1, 64>(&mesh, codes, Visibility::Order(order), &mut got).unwrap();
+    assert!(got.0 == want.0, "the bit-sliced frame differs");
+    assert!(words.iter().all(|&w| w == 0), "left {words:x?}");
+    // One word short: the length needed, not a truncated row.
+    let mut short = vec![0u32; len - 1];
+    let codes = RowCodes::BitSliced(&mut short);
+    assert_eq!(
+        code_fill_rows::<1, 64>(&mesh, codes, Visibility::Order(order), &mut ()),
+        Err(Error::CapacityExceeded {
+            needed: len,
+            capacity: len - 1
+        })
+    );
 }
 
 /// The face id (0 none, else 1 + face) at pixel (48, 32).
