@@ -176,6 +176,8 @@ struct ActiveFace {
 }
 
 const NO_BIT: u16 = u16::MAX;
+/// Faces whose fold test the engine remembers (see `fold_of`).
+const FOLD_MEMO: usize = 32;
 const OVER: u16 = u16::MAX - 1;
 
 /// The code-fill renderer with S = `Frac` sub-pixel bits, a surface code of
@@ -202,6 +204,8 @@ pub struct CodeFillRenderer<
     inside: usize,
     /// This frame has a depth order: codes are weight-1 in that order.
     priority: bool,
+    /// Recent fold tests: `(1 + face) << 1 | fold`, 0 for none, by face index.
+    fold_memo: [u32; FOLD_MEMO],
     /// Next entry of the face order to activate, and the next row to scan.
     next_face: usize,
     row: u16,
@@ -254,6 +258,7 @@ impl<
         faces * (size_of::<ActiveFace>() + 2 * size_of::<u16>())
             + edges * (size_of::<ActiveEdge>() + 2 * size_of::<u16>())
             + WORDS * (size_of::<u32>() + 32 * size_of::<u16>())
+            + FOLD_MEMO * size_of::<u32>()
             + 4 * size_of::<usize>()
     }
 
@@ -274,6 +279,7 @@ impl<
             owner: [[0; 32]; WORDS],
             inside: 0,
             priority: false,
+            fold_memo: [0; FOLD_MEMO],
             next_face: 0,
             row: 0,
             widest: 0,
@@ -522,6 +528,7 @@ impl<
         }
         self.edges.clear();
         self.next_face = 0;
+        self.fold_memo = [0; FOLD_MEMO];
         self.row = 0;
         self.widest = 0;
         self.peak_faces = 0;

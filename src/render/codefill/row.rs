@@ -5,7 +5,7 @@ use heapless::Vec;
 
 use fixed::types::extra::LeEqU32;
 
-use super::{ActiveFace, CodeFillRenderer, Surfaces, NO_BIT, OVER};
+use super::{ActiveFace, CodeFillRenderer, Surfaces, FOLD_MEMO, NO_BIT, OVER};
 use crate::render::active::ActiveEdge;
 use crate::render::coverage::{fragments_may_overlap, has_area};
 use crate::render::transform::{ProjectedVertex, ScreenVertex};
@@ -190,6 +190,30 @@ impl<
         }
     }
 
+    /// Whether the fragments of mesh face `source` may overlap in this view
+    /// ([`fragments_may_overlap`]), remembered for the face's other fragments: a
+    /// face's fragments start on nearby rows, so a few slots (by face index) catch
+    /// most of them.
+    fn fold_of(
+        &mut self,
+        ctx: &FrameCtx<'_, '_>,
+        source: usize,
+        vertices: &[ProjectedVertex],
+    ) -> bool {
+        let key = (source as u32 + 1) << 1;
+        let slot = self.fold_memo.get_mut(source % FOLD_MEMO);
+        if let Some(&seen) = slot.as_deref() {
+            if seen & !1 == key {
+                return seen & 1 == 1;
+            }
+        }
+        let fold = fragments_may_overlap(ctx.mesh, source, vertices);
+        if let Some(seen) = slot {
+            *seen = key | u32::from(fold);
+        }
+        fold
+    }
+
     /// Moves every active edge and face past the current row, dropping those that
     /// end there.
     pub(super) fn step_row(&mut self) {
@@ -288,7 +312,7 @@ impl<
             }
             let rank = fill.rank(f);
             let source = fill.source(f);
-            let fold = self.priority && fragments_may_overlap(ctx.mesh, source, vertices);
+            let fold = self.priority && self.fold_of(ctx, source, vertices);
             if let Some(face) = self.faces.get_mut(usize::from(slot)) {
                 *face = ActiveFace {
                     id: (source + 1) as u16,
