@@ -20,22 +20,21 @@ use std::mem::{size_of, size_of_val};
 use std::path::PathBuf;
 
 use fixed::types::extra::U4;
-use pbuffer::mesh::{EdgeAdjacency, Mesh};
 use pbuffer::order::BspTree;
-use pbuffer::render::{storage_rows, Depth, ProjectedVertex, RowCodes};
+use pbuffer::render::{Depth, RowCodes};
 use pbuffer::{
-    packed_len, Camera, CodeFillRenderer, CodeWorkspace, DepthOrder, Error, MonoPalette,
-    PackedFramebuffer, Settings, Stats, Visibility, Workspace, ZBufferRenderer,
+    packed_len, CodeFillRenderer, Error, MonoPalette, PackedFramebuffer, Stats, Visibility,
+    ZBufferRenderer,
 };
 
 use crate::baseline::{prepare_baseline, render_prepared};
-use crate::bsp::with_bsp;
+use crate::bsp::{with_bsp, DepthRanks};
 use crate::callgrind::measured_region;
 use crate::fit::fit_camera;
 use crate::frame::{CameraSpec, MeshData, RenderSpec};
 use crate::image::count_set;
 use crate::obj::load_obj;
-use crate::pipeline::{self, AdjacencyStorage, MeshArrays};
+use crate::setup::{IdBuffers, Scene, SceneStorage};
 
 mod report;
 pub use report::run;
@@ -199,14 +198,6 @@ impl View {
     }
 }
 
-/// What firmware keeps per mesh and per view, built before the measured region.
-struct LibraryScene<'m, 'e> {
-    mesh: Mesh<'m>,
-    adjacency: EdgeAdjacency<'e>,
-    camera: Camera,
-    settings: Settings,
-}
-
 /// One frame drawn and what it needed.
 struct Drawn {
     bytes: Vec<u8>,
@@ -253,19 +244,9 @@ fn draw_sized<const W: usize, const H: usize, const N: usize>(
             depth_bytes: W * H * 4,
         });
     }
-    let arrays = MeshArrays::new(&view.data);
-    let mesh = Mesh::new(&arrays.vertices, &arrays.indices, &arrays.offsets)
-        .map_err(|e| Refusal::Setup(format!("mesh: {e}")))?;
-    let mut storage = AdjacencyStorage::new(&arrays);
-    let adjacency = storage
-        .build(&mesh, spec.crease_deg)
-        .map_err(Refusal::Setup)?;
-    let scene = LibraryScene {
-        mesh,
-        adjacency,
-        camera: pipeline::camera(&view.camera).map_err(Refusal::Setup)?,
-        settings: pipeline::settings(&spec).map_err(Refusal::Setup)?,
-    };
+    // What firmware keeps per mesh and per view, built before the measured region.
+    let mut storage = SceneStorage::new(&view.data);
+    let scene = storage.scene(&view.camera, &spec).map_err(Refusal::Setup)?;
     let band = renderer.band.unwrap_or(H);
     match renderer.engine {
         Engine::ZBuffer16 => z_buffer::<W, H, N, u16>(&scene, band).map_err(Refusal::Library),
@@ -291,7 +272,7 @@ fn draw_sized<const W: usize, const H: usize, const N: usize>(
 
 /// [`code_fill`] with the firmware capacities or a [`ROOMIER`] rung.
 fn code_fill_rung<const W: usize, const H: usize, const N: usize, const WORDS: usize>(
-    scene: &LibraryScene<'_, '_>,
+    scene: &Scene<'_>,
     bsp: Option<(&BspTree<'_>, usize)>,
     band: usize,
     sliced: bool,
@@ -324,7 +305,7 @@ fn code_fill<
     const FACES: usize,
     const EDGES: usize,
 >(
-    scene: &LibraryScene<'_, '_>,
+    scene: &Scene<'_>,
     bsp: Option<(&BspTree<'_>, usize)>,
     band: usize,
     sliced: bool,
@@ -336,30 +317,17 @@ fn code_fill<
     let mut words = vec![0u32; if sliced { sliced_len } else { 0 }];
     let faces = scene.mesh.face_count();
     let surfaces = bsp.map_or(scene.mesh, |(tree, _)| tree.fragments());
-    let mut vertices = vec![ProjectedVertex::default(); surfaces.vertices().len()];
-    let mut drawn = vec![0u32; faces.div_ceil(32)];
-    let mut features = vec![0u32; scene.adjacency.edges().len().div_ceil(32)];
+    let edges = scene.adjacency.edges().len();
+    let mut buffers = IdBuffers::sized(W, H, band, surfaces.vertices().len(), faces, edges);
     let mut order = vec![0u32; surfaces.face_count()];
-    let mut rank = vec![0u32; bsp.map_or(0, |(tree, _)| tree.fragment_count())];
-    let mut stack = vec![0u32; bsp.map_or(0, |(tree, _)| tree.depth())];
-    let stored = usize::from(storage_rows(band as u16, H as u16));
-    let mut ids = vec![0u16; W * stored];
-    let mut lines = vec![0u32; 2 * W.div_ceil(32) * band];
-    let mut ws = CodeWorkspace {
-        vertices: &mut vertices,
-        drawn: &mut drawn,
-        features: &mut features,
-        order: &mut order,
-        ids: &mut ids,
-        lines: &mut lines,
-    };
+    let mut ranks = DepthRanks::new(bsp.map(|(tree, _)| tree));
+    let mut ws = buffers.code_workspace(&mut order);
     let working_ram = ws.bytes()
         + size_of_val(scene.adjacency.edges())
         + size_of::<Engine<WORDS, FACES, EDGES>>()
         + size_of_val(words.as_slice())
         + bsp.map_or(0, |(_, kept)| kept)
-        + size_of_val(rank.as_slice())
-        + size_of_val(stack.as_slice());
+        + ranks.bytes();
     let mut renderer = Box::new(Engine::<WORDS, FACES, EDGES>::new());
     let mut fb = Box::new(PackedFramebuffer::<W, H, N>::new());
     let palette = MonoPalette::default();
@@ -371,18 +339,13 @@ fn code_fill<
             RowCodes::Crossings
         };
         let visibility = match bsp {
-            Some((tree, _)) => {
-                let view = scene.camera.viewpoint();
-                if let Err(e) = tree.rank_front_to_back(&view, &mut stack, &mut rank) {
+            Some((tree, _)) => match ranks.order(tree, &scene.camera.viewpoint()) {
+                Ok(order) => Visibility::Order(order),
+                Err(e) => {
                     result = Some(Err(e.widen()));
                     return;
                 }
-                Visibility::Order(DepthOrder {
-                    surfaces: tree.fragments(),
-                    source: tree.source(),
-                    rank: &rank,
-                })
-            }
+            },
             None => Visibility::Planes,
         };
         result = Some(renderer.render_with(
@@ -408,25 +371,15 @@ fn code_fill<
 }
 
 fn z_buffer<const W: usize, const H: usize, const N: usize, D: Depth>(
-    scene: &LibraryScene<'_, '_>,
+    scene: &Scene<'_>,
     band: usize,
 ) -> Result<Drawn, Error<Infallible>> {
     type Engine = ZBufferRenderer<U4, FACE_EDGES, POLY>;
-    let mut vertices = vec![ProjectedVertex::default(); scene.mesh.vertices().len()];
-    let mut drawn = vec![0u32; scene.mesh.face_count().div_ceil(32)];
-    let mut features = vec![0u32; scene.adjacency.edges().len().div_ceil(32)];
-    let stored = usize::from(storage_rows(band as u16, H as u16));
-    let mut depth = vec![D::default(); W * stored];
-    let mut ids = vec![0u16; W * stored];
-    let mut lines = vec![0u32; 2 * W.div_ceil(32) * band];
-    let mut ws = Workspace {
-        vertices: &mut vertices,
-        drawn: &mut drawn,
-        features: &mut features,
-        depth: &mut depth,
-        ids: &mut ids,
-        lines: &mut lines,
-    };
+    let (faces, edges) = (scene.mesh.face_count(), scene.adjacency.edges().len());
+    let vertices = scene.mesh.vertices().len();
+    let mut buffers = IdBuffers::sized(W, H, band, vertices, faces, edges);
+    let mut depth = vec![D::default(); buffers.ids.len()];
+    let mut ws = buffers.depth_workspace(&mut depth);
     let working_ram = ws.bytes() + size_of_val(scene.adjacency.edges()) + size_of::<Engine>();
     let mut renderer = Box::new(Engine::new());
     let mut fb = Box::new(PackedFramebuffer::<W, H, N>::new());

@@ -2,9 +2,9 @@
 
 use std::time::Instant;
 
-use pbuffer::mesh::Mesh;
+use pbuffer::mesh::{Mesh, Viewpoint};
 use pbuffer::order::{BspNode, BspSizes, BspStorage, BspTree};
-use pbuffer::Error;
+use pbuffer::{DepthOrder, Error};
 
 /// A built tree's figures.
 #[derive(Clone, Copy, Debug, Default)]
@@ -103,4 +103,40 @@ pub fn with_bsp<R>(
         }
     }
     Err("BSP tree: storage for 4096 splits per face was not enough".into())
+}
+
+/// The per-view walk of a BSP tree (or of none): one rank per fragment and the walk's
+/// stack.
+pub struct DepthRanks {
+    pub rank: Vec<u32>,
+    pub stack: Vec<u32>,
+}
+
+impl DepthRanks {
+    /// Storage for walking `tree` (empty with no tree).
+    pub fn new(tree: Option<&BspTree<'_>>) -> Self {
+        Self {
+            rank: vec![0u32; tree.map_or(0, |t| t.fragment_count())],
+            stack: vec![0u32; tree.map_or(0, |t| t.depth())],
+        }
+    }
+
+    /// Bytes of the ranks and the stack.
+    pub fn bytes(&self) -> usize {
+        std::mem::size_of_val(self.rank.as_slice()) + std::mem::size_of_val(self.stack.as_slice())
+    }
+
+    /// Ranks `tree`'s fragments for `view`, nearest first: the order to draw them in.
+    pub fn order<'a>(
+        &'a mut self,
+        tree: &'a BspTree<'_>,
+        view: &Viewpoint,
+    ) -> Result<DepthOrder<'a>, Error> {
+        tree.rank_front_to_back(view, &mut self.stack, &mut self.rank)?;
+        Ok(DepthOrder {
+            surfaces: tree.fragments(),
+            source: tree.source(),
+            rank: &self.rank,
+        })
+    }
 }

@@ -8,13 +8,13 @@ use std::time::Instant;
 
 use embedded_graphics::pixelcolor::{Gray8, GrayColor};
 use fixed::types::extra::{LeEqU32, U10, U11, U12, U2, U3, U4, U5, U6, U7, U8, U9};
-use pbuffer::mesh::Mesh;
-use pbuffer::render::{Depth, ProjectedVertex};
-use pbuffer::{GreyPalette, GreyShades, Span, SpanSink, Viewport, Workspace, ZBufferRenderer};
+use pbuffer::render::Depth;
+use pbuffer::{GreyPalette, GreyShades, Span, SpanSink, Viewport, ZBufferRenderer};
 
 use crate::frame::{CameraSpec, MeshData, ProjectionSpec, RenderSpec};
-use crate::pipeline::{camera, settings, AdjacencyStorage, MeshArrays, EDGES, POLY};
+use crate::pipeline::{EDGES, POLY};
 use crate::reference3d::RefFrame;
+use crate::setup::{IdBuffers, Scene, SceneStorage};
 
 /// The palette of the host's grey frames: black background, white lines, faces
 /// from level 48 (edge-on) to 176 (facing the eye).
@@ -103,30 +103,18 @@ fn grey_sd<Frac: LeEqU32, D: Depth>(
     spec: &RenderSpec,
     palette: &GreyShades<Gray8>,
 ) -> Result<GreyFrame, String> {
-    let arrays = MeshArrays::new(data);
-    let mesh = Mesh::new(&arrays.vertices, &arrays.indices, &arrays.offsets)
-        .map_err(|e| format!("mesh: {e}"))?;
-    let mut storage = AdjacencyStorage::new(&arrays);
-    let adjacency = storage.build(&mesh, spec.crease_deg)?;
-    let camera = camera(cam)?;
-    let settings = settings(spec)?;
+    let mut storage = SceneStorage::new(data);
+    let Scene {
+        mesh,
+        adjacency,
+        camera,
+        settings,
+        ..
+    } = storage.scene(cam, spec)?;
     let (w, h) = (spec.width, spec.height);
-    let band = spec.band.clamp(1, h.max(1));
-    let stored = usize::from(pbuffer::render::storage_rows(band as u16, h as u16));
-    let mut vertices = vec![ProjectedVertex::default(); arrays.vertices.len()];
-    let mut drawn = vec![0u32; mesh.face_count().div_ceil(32)];
-    let mut features = vec![0u32; adjacency.edges().len().div_ceil(32)];
-    let mut depth = vec![D::default(); w * stored];
-    let mut ids = vec![0u16; w * stored];
-    let mut lines = vec![0u32; 2 * w.div_ceil(32) * band];
-    let mut ws = Workspace {
-        vertices: &mut vertices,
-        drawn: &mut drawn,
-        features: &mut features,
-        depth: &mut depth,
-        ids: &mut ids,
-        lines: &mut lines,
-    };
+    let mut buffers = IdBuffers::for_mesh(spec, mesh.vertices().len(), &mesh, &adjacency);
+    let mut depth = vec![D::default(); buffers.ids.len()];
+    let mut ws = buffers.depth_workspace(&mut depth);
     let mut sink = GreySink {
         width: w,
         height: h,

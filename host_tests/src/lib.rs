@@ -21,4 +21,5 @@ pub mod reference3d;
 pub mod report;
 pub mod scenes;
 pub mod schemes;
+pub mod setup;
 pub mod shapes;

@@ -1,11 +1,11 @@
 //! `pbuffer::render::pick` on the host: what is under chosen pixels.
 
-use pbuffer::mesh::Mesh;
 use pbuffer::render::{pick, Pick, PickWorkspace, PickedEdge, ProjectedVertex};
 use pbuffer::Viewport;
 
 use crate::frame::{CameraSpec, MeshData, RenderSpec};
-use crate::pipeline::{camera, settings, AdjacencyStorage, MeshArrays, POLY};
+use crate::pipeline::POLY;
+use crate::setup::{Scene, SceneStorage};
 
 /// One picked pixel: the library's answer, each edge with its end positions.
 #[derive(Clone, Debug)]
@@ -50,16 +50,17 @@ fn pick_s<Frac: fixed::types::extra::LeEqU32>(
     spec: &RenderSpec,
     pixels: &[(u16, u16)],
 ) -> Result<Vec<Picked>, String> {
-    let arrays = MeshArrays::new(data);
-    let mesh = Mesh::new(&arrays.vertices, &arrays.indices, &arrays.offsets)
-        .map_err(|e| format!("mesh: {e}"))?;
-    let mut storage = AdjacencyStorage::new(&arrays);
-    let adjacency = storage.build(&mesh, spec.crease_deg)?;
-    let camera = camera(cam)?;
-    let settings = settings(spec)?;
+    let mut storage = SceneStorage::new(data);
+    let Scene {
+        mesh,
+        adjacency,
+        camera,
+        settings,
+        ..
+    } = storage.scene(cam, spec)?;
     let viewport = Viewport::new(spec.width as u32, spec.height as u32)
         .map_err(|e| format!("viewport: {e}"))?;
-    let mut vertices = vec![ProjectedVertex::default(); arrays.vertices.len()];
+    let mut vertices = vec![ProjectedVertex::default(); mesh.vertices().len()];
     let mut drawn = vec![0u32; mesh.face_count().div_ceil(32)];
     let mut features = vec![0u32; adjacency.edges().len().div_ceil(32)];
     let mut out = vec![PickedEdge::default(); 64];
@@ -94,7 +95,7 @@ fn pick_s<Frac: fixed::types::extra::LeEqU32>(
                 let e = adjacency.edges()[pe.edge as usize];
                 (
                     *pe,
-                    [arrays.vertices[e.a as usize], arrays.vertices[e.b as usize]],
+                    [mesh.vertices()[e.a as usize], mesh.vertices()[e.b as usize]],
                 )
             })
             .collect();

@@ -1,22 +1,20 @@
 //! The library's 3-D pipeline on the host: `MeshData` and specs in, a `Frame` out.
 
-use std::time::Instant;
-
 use embedded_graphics::pixelcolor::BinaryColor;
 use fixed::types::extra::{LeEqU32, U0, U1, U10, U11, U12, U2, U3, U4, U5, U6, U7, U8, U9};
 use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
 use pbuffer::order::BspTree;
-use pbuffer::render::{Depth, FrameProbe, ProjectedVertex, RowCodes};
+use pbuffer::render::{Depth, FrameProbe, RowCodes};
 use pbuffer::{
-    Camera, CodeFillRenderer, CodeWorkspace, Cull, DepthOrder, DrawMode, MonoPalette, Pattern,
-    Projection, Settings, Span, SpanSink, Stats, Viewport, Visibility, Workspace, ZBufferRenderer,
+    Camera, CodeFillRenderer, Cull, DrawMode, MonoPalette, Pattern, Projection, Settings, Span,
+    SpanSink, Stats, Viewport, Visibility, ZBufferRenderer,
 };
 
-use crate::bsp::{with_bsp, BspFigures};
-use crate::callgrind::measured_region;
+use crate::bsp::{with_bsp, BspFigures, DepthRanks};
 use crate::frame::{
     CameraSpec, CullSpec, EngineSpec, Frame, MeshData, ModeSpec, ProjectionSpec, RenderSpec,
 };
+use crate::setup::{IdBuffers, Measured, Scene, SceneStorage};
 
 /// Scan-converter edge capacity and clipped-polygon capacity used on the host.
 pub(crate) const EDGES: usize = 512;
@@ -285,68 +283,36 @@ fn render_sd<Frac: LeEqU32, D: Depth>(
     cam: &CameraSpec,
     spec: &RenderSpec,
 ) -> Result<Frame, String> {
-    let arrays = MeshArrays::new(data);
-    let mesh = Mesh::new(&arrays.vertices, &arrays.indices, &arrays.offsets)
-        .map_err(|e| format!("mesh: {e}"))?;
-    let mut storage = AdjacencyStorage::new(&arrays);
-    let build_bytes = storage.build_bytes();
-    let adjacency = storage.build(&mesh, spec.crease_deg)?;
-    let camera = camera(cam)?;
-    let settings = settings(spec)?;
-    let (w, h) = (spec.width, spec.height);
-    let band = spec.band.clamp(1, h.max(1));
-    let row_words = w.div_ceil(32);
-    let mut vertices = vec![ProjectedVertex::default(); arrays.vertices.len()];
-    let mut drawn = vec![0u32; mesh.face_count().div_ceil(32)];
-    let mut features = vec![0u32; adjacency.edges().len().div_ceil(32)];
-    let stored = usize::from(pbuffer::render::storage_rows(band as u16, h as u16));
-    let mut depth = vec![D::default(); w * stored];
-    let mut ids = vec![0u16; w * stored];
-    let mut lines = vec![0u32; 2 * row_words * band];
-    let mut ws = Workspace {
-        vertices: &mut vertices,
-        drawn: &mut drawn,
-        features: &mut features,
-        depth: &mut depth,
-        ids: &mut ids,
-        lines: &mut lines,
-    };
+    let mut storage = SceneStorage::new(data);
+    let Scene {
+        mesh,
+        adjacency,
+        camera,
+        settings,
+        build_bytes,
+    } = storage.scene(cam, spec)?;
+    let mut buffers = IdBuffers::for_mesh(spec, mesh.vertices().len(), &mesh, &adjacency);
+    let mut depth = vec![D::default(); buffers.ids.len()];
+    let mut ws = buffers.depth_workspace(&mut depth);
     // Per frame: the lent workspace, the mesh's edge list and the renderer. The weld
     // map and half-edge records are needed only while the edge list is built (once
     // per mesh), so they are reported apart.
     let lent = ws.bytes() + std::mem::size_of_val(adjacency.edges());
     let mut renderer = Box::new(ZBufferRenderer::<Frac, EDGES, POLY>::new());
-    let mut target = PackedFrame::new(w, h);
-    let mut probe = Collect::new(w, h);
-    let start = Instant::now();
-    let mut result = None;
-    measured_region(&mut || {
-        result = Some(renderer.render(
+    let measured = Measured::run(spec.width, spec.height, |target, probe| {
+        renderer.render(
             &mesh,
             &adjacency,
             &camera,
             &settings,
             &mut ws,
             &MonoPalette::default(),
-            &mut target,
-            &mut probe,
-        ));
-    });
-    let stats = result
-        .expect("the measured region ran")
-        .map_err(|e| format!("render: {e}"))?;
-    let time_us = start.elapsed().as_micros() as u64;
+            target,
+            probe,
+        )
+    })?;
     let working = lent + std::mem::size_of::<ZBufferRenderer<Frac, EDGES, POLY>>();
-    Ok(frame(
-        w,
-        h,
-        probe,
-        target,
-        &stats,
-        working,
-        build_bytes,
-        time_us,
-    ))
+    Ok(measured.frame(working, build_bytes))
 }
 
 /// The frame and its `--stats` figures.
@@ -397,21 +363,20 @@ fn render_code<Frac: LeEqU32, const WORDS: usize>(
     cam: &CameraSpec,
     spec: &RenderSpec,
 ) -> Result<Frame, String> {
-    let arrays = MeshArrays::new(data);
-    let mesh = Mesh::new(&arrays.vertices, &arrays.indices, &arrays.offsets)
-        .map_err(|e| format!("mesh: {e}"))?;
+    let mut storage = SceneStorage::new(data);
+    let scene = storage.scene(cam, spec)?;
     if spec.engine == EngineSpec::Scanline {
-        return render_code_with::<Frac, WORDS>(&arrays, &mesh, None, cam, spec);
+        return render_code_with::<Frac, WORDS>(&scene, None, spec);
     }
-    match with_bsp(&mesh, |tree, figures| {
-        render_code_with::<Frac, WORDS>(&arrays, &mesh, Some((tree, figures)), cam, spec)
+    match with_bsp(&scene.mesh, |tree, figures| {
+        render_code_with::<Frac, WORDS>(&scene, Some((tree, figures)), spec)
     }) {
         Ok(frame) => frame,
         // A mesh whose tree would need more fragments than face ids can name: the
         // same engine without an order (planes where faces overlap), said aloud.
         Err(e) => {
             eprintln!("note: {e}; rendering with --engine scanline instead");
-            let mut frame = render_code_with::<Frac, WORDS>(&arrays, &mesh, None, cam, spec)?;
+            let mut frame = render_code_with::<Frac, WORDS>(&scene, None, spec)?;
             frame.stats.push(("depth_order_fallback".into(), 1));
             Ok(frame)
         }
@@ -419,41 +384,25 @@ fn render_code<Frac: LeEqU32, const WORDS: usize>(
 }
 
 fn render_code_with<Frac: LeEqU32, const WORDS: usize>(
-    arrays: &MeshArrays,
-    mesh: &Mesh<'_>,
+    scene: &Scene<'_>,
     bsp: Option<(&BspTree<'_>, BspFigures)>,
-    cam: &CameraSpec,
     spec: &RenderSpec,
 ) -> Result<Frame, String> {
-    let mut storage = AdjacencyStorage::new(arrays);
-    let build_bytes = storage.build_bytes();
-    let adjacency = storage.build(mesh, spec.crease_deg)?;
-    let camera = camera(cam)?;
-    let settings = settings(spec)?;
-    let (w, h) = (spec.width, spec.height);
-    let band = spec.band.clamp(1, h.max(1));
-    let row_words = w.div_ceil(32);
+    let Scene {
+        mesh,
+        adjacency,
+        camera,
+        settings,
+        build_bytes,
+    } = scene;
+    let w = spec.width;
     let surfaces = bsp.map_or(*mesh, |(tree, _)| tree.fragments());
-    let mut vertices = vec![ProjectedVertex::default(); surfaces.vertices().len()];
-    let mut drawn = vec![0u32; mesh.face_count().div_ceil(32)];
-    let mut features = vec![0u32; adjacency.edges().len().div_ceil(32)];
+    let mut buffers = IdBuffers::for_mesh(spec, surfaces.vertices().len(), mesh, adjacency);
     let mut order = vec![0u32; surfaces.face_count()];
-    let stored = usize::from(pbuffer::render::storage_rows(band as u16, h as u16));
-    let mut ids = vec![0u16; w * stored];
-    let mut lines = vec![0u32; 2 * row_words * band];
-    let mut ws = CodeWorkspace {
-        vertices: &mut vertices,
-        drawn: &mut drawn,
-        features: &mut features,
-        order: &mut order,
-        ids: &mut ids,
-        lines: &mut lines,
-    };
+    let mut ws = buffers.code_workspace(&mut order);
     let lent = ws.bytes() + std::mem::size_of_val(adjacency.edges());
     type Engine<F, const W: usize> = CodeFillRenderer<F, W, ACTIVE_FACES, ACTIVE_EDGES, POLY>;
     let mut renderer = Box::new(Engine::<Frac, WORDS>::new());
-    let mut target = PackedFrame::new(w, h);
-    let mut probe = Collect::new(w, h);
     // Bit-sliced rows: every pixel's code, up to WORDS words, and a bit per pixel.
     let sliced = spec.engine == EngineSpec::CodeFill;
     let mut words = vec![
@@ -470,55 +419,36 @@ fn render_code_with<Frac: LeEqU32, const WORDS: usize>(
         RowCodes::Crossings
     };
     // The depth order: one rank per fragment, and the walk's stack.
-    let mut rank = vec![0u32; bsp.map_or(0, |(tree, _)| tree.fragment_count())];
-    let mut stack = vec![0u32; bsp.map_or(0, |(tree, _)| tree.depth())];
-    let start = Instant::now();
+    let mut ranks = DepthRanks::new(bsp.map(|(tree, _)| tree));
     let mut codes = Some(codes);
-    let mut result = None;
     // The per-frame walk of the tree is part of the frame.
-    measured_region(&mut || {
-        let Some(codes) = codes.take() else { return };
+    let measured = Measured::run(w, spec.height, |target, probe| {
+        let codes = codes.take().expect("the frame is drawn once");
         let visibility = match bsp {
-            Some((tree, _)) => {
-                let view = camera.viewpoint();
-                if let Err(e) = tree.rank_front_to_back(&view, &mut stack, &mut rank) {
-                    result = Some(Err(e.widen()));
-                    return;
-                }
-                Visibility::Order(DepthOrder {
-                    surfaces: tree.fragments(),
-                    source: tree.source(),
-                    rank: &rank,
-                })
-            }
+            Some((tree, _)) => Visibility::Order(ranks.order(tree, &camera.viewpoint())?),
             None => Visibility::Planes,
         };
-        result = Some(renderer.render_with(
+        renderer.render_with(
             mesh,
-            &adjacency,
-            &camera,
-            &settings,
+            adjacency,
+            camera,
+            settings,
             &mut ws,
             codes,
             visibility,
             &MonoPalette::default(),
-            &mut target,
-            &mut probe,
-        ));
-    });
-    let stats = result
-        .expect("the measured region ran")
-        .map_err(|e| format!("render: {e}"))?;
-    let time_us = start.elapsed().as_micros() as u64;
-    let order_bytes = bsp.map_or(0, |(_, f)| f.kept_bytes)
-        + std::mem::size_of_val(rank.as_slice())
-        + std::mem::size_of_val(stack.as_slice());
+            target,
+            probe,
+        )
+    })?;
+    let stats = measured.stats;
+    let order_bytes = bsp.map_or(0, |(_, f)| f.kept_bytes) + ranks.bytes();
     let lent = lent + std::mem::size_of_val(words.as_slice()) + order_bytes;
     // The engine this frame needed: its peak active faces and edges, not the host's
     // capacities.
     let working = lent
         + Engine::<Frac, WORDS>::bytes_for(stats.peak_faces as usize, stats.peak_edges as usize);
-    let mut frame = frame(w, h, probe, target, &stats, working, build_bytes, time_us);
+    let mut frame = measured.frame(working, *build_bytes);
     if let Some((_, f)) = bsp {
         frame.stats.extend([
             ("bsp_fragments".into(), f.fragments as u64),

@@ -23,13 +23,12 @@ use pbuffer::mesh::Mesh;
 use pbuffer::render::{SchemeCoding, SchemeRenderer, ScreenSegments};
 use pbuffer::{Error, MonoPalette, SchemeViolation};
 
-use crate::engines::IdBuffers;
 use crate::frame::{CameraSpec, CullSpec, EngineSpec, Frame, MeshData, ModeSpec, RenderSpec};
 use crate::pipeline::{
-    camera, frame, render_frame, settings, AdjacencyStorage, Collect, MeshArrays, PackedFrame,
-    EDGES, POLY,
+    camera, render_frame, AdjacencyStorage, Collect, MeshArrays, PackedFrame, EDGES, POLY,
 };
 use crate::reference3d::reference_frame;
+use crate::setup::{IdBuffers, Measured, Scene, SceneStorage};
 
 /// Code width capacity on the host: the library's largest.
 pub const WIDTH: usize = 128;
@@ -418,20 +417,15 @@ fn draw_s<Frac: LeEqU32, const W: usize, const E: usize>(
     spec: &RenderSpec,
     coding: &SchemeCoding<'_, W, E>,
 ) -> Result<Frame, SchemeError> {
-    let arrays = MeshArrays::new(data);
-    let mesh = Mesh::new(&arrays.vertices, &arrays.indices, &arrays.offsets)
-        .map_err(|e| format!("mesh: {e}"))?;
-    let mut storage = AdjacencyStorage::new(&arrays);
-    let build_bytes = storage.build_bytes();
-    let adjacency = storage.build(&mesh, spec.crease_deg)?;
-    let camera = camera(cam)?;
-    let settings = settings(spec)?;
-    let mut buffers = IdBuffers::new(
-        spec,
-        arrays.vertices.len(),
-        mesh.face_count(),
-        adjacency.edges().len(),
-    );
+    let mut storage = SceneStorage::new(data);
+    let Scene {
+        mesh,
+        adjacency,
+        camera,
+        settings,
+        build_bytes,
+    } = storage.scene(cam, spec)?;
+    let mut buffers = IdBuffers::for_mesh(spec, mesh.vertices().len(), &mesh, &adjacency);
     let (w, h) = (spec.width, spec.height);
     // Codes for the band and its apron: one pass over the faces per band.
     let mut codes = vec![0u128; buffers.ids.len().max(w)];
@@ -460,14 +454,11 @@ fn draw_s<Frac: LeEqU32, const W: usize, const E: usize>(
         .map_err(SchemeError::Library)?;
     let time_us = start.elapsed().as_micros() as u64;
     let working = lent + std::mem::size_of::<SchemeRenderer<Frac, EDGES, POLY>>();
-    Ok(frame(
-        w,
-        h,
-        probe,
+    let measured = Measured {
         target,
-        &stats,
-        working,
-        build_bytes,
+        probe,
+        stats,
         time_us,
-    ))
+    };
+    Ok(measured.frame(working, build_bytes))
 }
