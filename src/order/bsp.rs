@@ -210,9 +210,9 @@ pub struct BspOptions {
 }
 
 impl BspOptions {
-    /// 64 candidates, a split weighing 8 fragments of imbalance.
+    /// 16 candidates, a split weighing 8 fragments of imbalance.
     pub const DEFAULT: Self = Self {
-        candidates: 64,
+        candidates: 16,
         split_weight: 8,
     };
 }
