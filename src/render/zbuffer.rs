@@ -15,6 +15,7 @@ use super::compose::{self, Compose, FrameProbe, Palette};
 use super::lines::{line_pass, LineMasks};
 use super::transform::{ProjectedVertex, ScreenVertex};
 use super::zband::{Depth, DepthPlane, FaceSpans, IdBand, ZBand};
+use super::zfan::{takes_fan_depth, FanSpans};
 use super::{band_rows, begin_frame, bit, face_polygon, FrameCtx, Settings, Stats, Workspace};
 use crate::camera::Camera;
 use crate::geometry::Subpixel;
@@ -254,6 +255,10 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
             for v in &poly {
                 let _ = points.push(ScreenPoint::from_bits(v.x, v.y));
             }
+            if takes_fan_depth(ctx.mesh, f) {
+                spans += self.fan_face(ctx, vertices, f, &points, &plane, band)?;
+                continue;
+            }
             let mut sink = FaceSpans {
                 band: &mut *band,
                 plane,
@@ -276,5 +281,38 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
             spans += sink.spans;
         }
         Ok(spans)
+    }
+
+    /// Depth-tests face `f`, not planar, whose clipped polygon is `points` and whose
+    /// single plane is `plane`: each pixel of the polygon's spans takes its depth from
+    /// the fan triangle that holds its centre (see [`FanSpans`]). Out of line, so the
+    /// fan triangles' storage is on the stack only while such a face is drawn.
+    #[inline(never)]
+    fn fan_face<D: Depth, T>(
+        &mut self,
+        ctx: &FrameCtx<'_, '_>,
+        vertices: &[ProjectedVertex],
+        f: usize,
+        points: &[ScreenPoint<Frac>],
+        plane: &DepthPlane,
+        band: &mut ZBand<'_, D>,
+    ) -> Result<u32, Error<T>> {
+        let rows = band.ids.first..band.ids.first + band.ids.held;
+        let mut sink = FanSpans::<D, POLY>::new(
+            band,
+            ctx.mesh,
+            vertices,
+            f,
+            plane,
+            ctx.viewport,
+            ctx.s,
+        );
+        self.scan
+            .fill_rows(points, FillRule::EvenOdd, rows, BinaryColor::On, &mut sink)
+            .map_err(|e| match e {
+                Error::Target(never) => match never {},
+                other => other.widen(),
+            })?;
+        Ok(sink.spans)
     }
 }
