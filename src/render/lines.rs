@@ -6,7 +6,7 @@ use heapless::Vec;
 
 use super::transform::{ProjectedVertex, ScreenVertex};
 use super::zband::{DepthPlane, IdBand};
-use super::zfan::{fan_corners, takes_fan_depth};
+use super::zfan::FanCache;
 use super::{bit, face_polygon, FrameCtx, Settings};
 use crate::mesh::{face_owns_edge, EdgeAdjacency, EdgeKind, Mesh, MeshEdge};
 use crate::scan::edge::div_rem_euclid;
@@ -252,6 +252,7 @@ pub(crate) fn line_pass<const POLY: usize>(
     let hide = settings.mode.needs_depth();
     // The last face tested for covering an edge point, with its polygon and plane.
     let mut cache = FaceCache::<POLY>::new();
+    let mut fans = FanCache::new();
     for (e, edge) in edges.edges().iter().enumerate() {
         if !bit(features, e) {
             continue;
@@ -267,7 +268,8 @@ pub(crate) fn line_pass<const POLY: usize>(
         }
         let rows = band.top..band.top + band.rows;
         walk_segment(&a, &b, ctx.s, ctx.viewport.width, rows, |px| {
-            let hidden = hide && hidden(ctx, vertices, drawn, edge, band, &px, &mut cache);
+            let hidden =
+                hide && hidden(ctx, vertices, drawn, edge, band, &px, &mut cache, &mut fans);
             masks.set(px.x, px.y - band.top, hidden);
         });
     }
@@ -298,20 +300,16 @@ pub(crate) fn edge_on_screen(
 /// Faces the line pass keeps set up: an edge's pixels meet the same few faces.
 const CACHED_FACES: usize = 2;
 
-/// A cached face: id (1 + index), polygon, single depth plane, and whether it takes
-/// its depth from its fan triangles ([`takes_fan_depth`]).
-type CachedFace<const POLY: usize> = (u16, Vec<ScreenVertex, POLY>, Option<DepthPlane>, bool);
-
 /// The last faces tested by the line pass: polygon and depth plane.
 struct FaceCache<const POLY: usize> {
-    slots: [CachedFace<POLY>; CACHED_FACES],
+    slots: [(u16, Vec<ScreenVertex, POLY>, Option<DepthPlane>); CACHED_FACES],
     next: usize,
 }
 
 impl<const POLY: usize> FaceCache<POLY> {
     fn new() -> Self {
         Self {
-            slots: [const { (0, Vec::new(), None, false) }; CACHED_FACES],
+            slots: [const { (0, Vec::new(), None) }; CACHED_FACES],
             next: 0,
         }
     }
@@ -326,19 +324,18 @@ impl<const POLY: usize> FaceCache<POLY> {
         vertices: &[ProjectedVertex],
         drawn: &[u32],
         id: u16,
-    ) -> &CachedFace<POLY> {
+    ) -> &(u16, Vec<ScreenVertex, POLY>, Option<DepthPlane>) {
         let k = match self.slots.iter().position(|slot| slot.0 == id) {
             Some(k) => k,
             None => {
                 let k = self.next;
                 self.next = (self.next + 1) % CACHED_FACES;
-                let (cid, poly, plane, fans) = &mut self.slots[k];
+                let (cid, poly, plane) = &mut self.slots[k];
                 let f = usize::from(id - 1);
                 *cid = id;
                 *plane = None;
                 if bit(drawn, f) && face_polygon(ctx, vertices, f, poly).unwrap_or(false) {
                     *plane = DepthPlane::new(poly, ctx.s);
-                    *fans = plane.is_some() && takes_fan_depth(ctx.mesh, f);
                 }
                 k
             }
@@ -352,6 +349,8 @@ impl<const POLY: usize> FaceCache<POLY> {
 /// centre), the face nearest at the neighbouring centre on that side, if that one
 /// contains it. A face that contains the point hides it when nearer by a small
 /// margin; the centre's face extended to the point needs a wide one (see [`nearer`]).
+/// A face that is not planar has there the depth of its fan triangle ([`FanCache`]).
+#[allow(clippy::too_many_arguments)]
 fn hidden<const POLY: usize>(
     ctx: &FrameCtx<'_, '_>,
     vertices: &[ProjectedVertex],
@@ -360,6 +359,7 @@ fn hidden<const POLY: usize>(
     band: &IdBand<'_>,
     px: &EdgePixel,
     cache: &mut FaceCache<POLY>,
+    fans: &mut FanCache,
 ) -> bool {
     let own = |id: u16| {
         let f = usize::from(id - 1);
@@ -398,13 +398,17 @@ fn hidden<const POLY: usize>(
         let f = usize::from(id - 1);
         let sure = id == nearest
             && (beside.is_none() || (beside == Some(id) && ctx.mesh.face(f).len() == 3));
-        let (_, poly, plane, fans) = cache.get(ctx, vertices, drawn, id);
+        let (_, poly, plane) = cache.get(ctx, vertices, drawn, id);
         let Some(plane) = plane.as_ref() else {
             continue;
         };
         if sure || polygon_contains(poly, px.px, px.py) {
-            let plane = depth_plane_at(ctx, vertices, f, *fans, plane, px.px, px.py);
-            return nearer(&plane, px, REACH_COVERING);
+            if ctx.mesh.face(f).len() > 3 {
+                if let Some(fan) = fans.plane_at(ctx.mesh, vertices, ctx.s, f, px.px, px.py) {
+                    return nearer(&fan, px, REACH_COVERING);
+                }
+            }
+            return nearer(plane, px, REACH_COVERING);
         }
         // Only the face at the pixel centre is extended to the point; a neighbour
         // counts only where it covers the point.
@@ -417,48 +421,19 @@ fn hidden<const POLY: usize>(
         // beside a vertex every incident face passes close to the edge.
         Some(id) if !touches(ctx.mesh, edge, usize::from(id - 1)) => {
             let f = usize::from(id - 1);
-            let (_, _, plane, fans) = cache.get(ctx, vertices, drawn, id);
-            // The face as it is at the pixel centre, extended to the point.
-            let (x, y) = (centre(px.x), centre(px.y));
-            plane.as_ref().is_some_and(|plane| {
-                let plane = depth_plane_at(ctx, vertices, f, *fans, plane, x, y);
-                nearer(&plane, px, REACH_EXTENDED)
-            })
+            // As the face is at the pixel centre, extended to the point.
+            let fan = if ctx.mesh.face(f).len() > 3 {
+                fans.plane_at(ctx.mesh, vertices, ctx.s, f, centre(px.x), centre(px.y))
+            } else {
+                None
+            };
+            let (_, _, plane) = cache.get(ctx, vertices, drawn, id);
+            plane
+                .as_ref()
+                .is_some_and(|plane| nearer(fan.as_ref().unwrap_or(plane), px, REACH_EXTENDED))
         }
         _ => false,
     }
-}
-
-/// The plane that gives face `f` its depth at point (`x`, `y`) (half sub-pixel
-/// units): when it takes its depth from its fan triangles (`fans`), the plane of the
-/// nearest one there among those whose projection holds the point (CONVENTIONS.md),
-/// else, or when none does, its single `plane`.
-fn depth_plane_at(
-    ctx: &FrameCtx<'_, '_>,
-    vertices: &[ProjectedVertex],
-    f: usize,
-    fans: bool,
-    plane: &DepthPlane,
-    x: i64,
-    y: i64,
-) -> DepthPlane {
-    if !fans {
-        return *plane;
-    }
-    let mut best: Option<(u32, DepthPlane)> = None;
-    for corners in fan_corners(ctx.mesh, vertices, f) {
-        if !polygon_contains(&corners, x, y) {
-            continue;
-        }
-        let Some(fan) = DepthPlane::new(&corners, ctx.s) else {
-            continue;
-        };
-        let q = fan.at(x, y);
-        if best.is_none_or(|(nearest, _)| q > nearest) {
-            best = Some((q, fan));
-        }
-    }
-    best.map_or(*plane, |(_, fan)| fan)
 }
 
 /// True when `plane` is strictly nearer than the edge point, beyond the uncertainty

@@ -15,11 +15,12 @@ use super::compose::{self, Compose, FrameProbe, Palette};
 use super::lines::{line_pass, LineMasks};
 use super::transform::{ProjectedVertex, ScreenVertex};
 use super::zband::{Depth, DepthPlane, FaceSpans, IdBand, ZBand};
-use super::zfan::{takes_fan_depth, FanSpans};
+use super::zfan::{fan_rows, takes_fan_depth, FanRow, FanSpans};
 use super::{band_rows, begin_frame, bit, face_polygon, FrameCtx, Settings, Stats, Workspace};
 use crate::camera::Camera;
 use crate::geometry::Subpixel;
 use crate::mesh::{EdgeAdjacency, Mesh};
+use crate::scan::RowRange;
 use crate::{Error, FillRule, ScanConverter, ScreenPoint, SpanSink};
 
 /// The Z-buffer + P-buffer renderer with S = `Frac` sub-pixel bits, room for
@@ -298,15 +299,30 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
         band: &mut ZBand<'_, D>,
     ) -> Result<u32, Error<T>> {
         let rows = band.ids.first..band.ids.first + band.ids.held;
-        let mut sink = FanSpans::<D, POLY>::new(
-            band,
+        let window = RowRange {
+            first: i32::from(rows.start),
+            end: i32::from(rows.end),
+        };
+        let mut fans: Vec<FanRow, POLY> = Vec::new();
+        fan_rows(
+            &mut fans,
             ctx.mesh,
             vertices,
             f,
-            plane,
-            ctx.viewport,
             ctx.s,
+            ctx.viewport,
+            window,
         );
+        let mut sink = FanSpans {
+            band,
+            fans: &mut fans,
+            fallback: plane.row_plane(0),
+            id: (f + 1) as u16,
+            viewport: ctx.viewport,
+            s: ctx.s,
+            row: None,
+            spans: 0,
+        };
         self.scan
             .fill_rows(points, FillRule::EvenOdd, rows, BinaryColor::On, &mut sink)
             .map_err(|e| match e {

@@ -17,12 +17,14 @@ use core::convert::Infallible;
 use embedded_graphics_core::pixelcolor::BinaryColor;
 use heapless::Vec;
 
+use super::lines::polygon_contains;
 use super::transform::{ProjectedVertex, ScreenVertex};
 use super::zband::{Depth, DepthPlane, RowPlane, ZBand};
 use crate::mesh::Mesh;
 use crate::order::is_planar;
-use crate::scan::edge::{div_rem_euclid, EdgeLine};
-use crate::{Span, SpanSink, Viewport};
+use crate::scan::edge::{Edge, EdgeLine};
+use crate::scan::RowRange;
+use crate::{Span, SpanSink, Viewport, GUARD_BAND_PX};
 
 /// Does face `f` take its depth from its fan triangles (more than three corners, not
 /// planar by [`is_planar`])? A triangle is never asked the (f64) planarity test.
@@ -54,113 +56,126 @@ pub(crate) fn fan_corners<'a>(
         })
 }
 
-/// The pixels `lo..hi` of row `j` whose centres lie inside the triangle `t`, by the
-/// scan converter's rule (see `scan::edge`), clamped to `0..width`.
-pub(crate) fn triangle_run(t: &[ScreenVertex; 3], s: u32, j: u16, width: u16) -> (u16, u16) {
-    let h = 1i64 << s;
-    let py = (2 * i64::from(j) + 1) * h;
-    let half = |v: &ScreenVertex| (2 * i64::from(v.x), 2 * i64::from(v.y));
-    let mut found = [0u16; 2];
-    let mut n = 0;
-    for (a, b) in [(0, 1), (1, 2), (2, 0)] {
-        let (Some(a), Some(b)) = (t.get(a), t.get(b)) else {
-            continue;
-        };
-        let Some(line) = EdgeLine::new(half(a), half(b)) else {
-            continue;
-        };
-        if !(line.y0 <= py && py < line.y1) {
-            continue;
-        }
-        // The first pixel right of the crossing, as the DDA's set-up computes it;
-        // exactly (128-bit) beyond 64 bits, which the guard band never reaches.
-        let (dx, dy) = (line.x1 - line.x0, line.y1 - line.y0);
-        let c = match (py - line.y0).checked_mul(dx) {
-            Some(num) => {
-                let (q, r) = div_rem_euclid(num, dy);
-                let c = (line.x0 + q + h - 1 + i64::from(r != 0)) >> (s + 1);
-                c.clamp(0, i64::from(width)) as u16
+/// A fan triangle's depth along the rows, its edges (DDAs of the scan converter, set
+/// up at the band's first row, each moved on to the row asked for), and its run of
+/// pixels on the current row.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct FanRow {
+    plane: RowPlane,
+    /// `first` is the row each DDA stands at (moved on with it).
+    edges: [Edge; 3],
+    lo: u16,
+    hi: u16,
+}
+
+impl FanRow {
+    /// The triangle `corners` (inside the guard band) with depth `plane`, its edges
+    /// set up for `window`.
+    fn new(
+        corners: &[ScreenVertex; 3],
+        plane: RowPlane,
+        s: u32,
+        viewport: Viewport,
+        window: RowRange,
+    ) -> Self {
+        let half = |v: &ScreenVertex| (2 * i64::from(v.x), 2 * i64::from(v.y));
+        let mut edges = [Edge::ZERO; 3];
+        for (slot, (a, b)) in edges.iter_mut().zip([(0, 1), (1, 2), (2, 0)]) {
+            let (Some(a), Some(b)) = (corners.get(a), corners.get(b)) else {
+                continue;
+            };
+            if let Some(line) = EdgeLine::new(half(a), half(b)) {
+                *slot = Edge::new(&line, line.clip(s, viewport, window), s).unwrap_or(Edge::ZERO);
             }
-            None => line.crossing_at(s, i32::from(j), width),
-        };
-        if let Some(slot) = found.get_mut(n) {
-            *slot = c;
         }
-        n += 1;
+        Self {
+            plane,
+            edges,
+            lo: 0,
+            hi: 0,
+        }
     }
-    // A row meets a triangle's boundary twice or not at all.
-    match (n, found) {
-        (2, [a, b]) => (a.min(b), a.max(b)),
-        _ => (0, 0),
+
+    /// Sets the run to the pixels of row `y` whose centres lie inside the triangle,
+    /// by the scan converter's rule (rows only ever move down).
+    fn run(&mut self, y: i32, s: u32, width: u16) {
+        let mut found = [i32::from(width); 2];
+        let mut n = 0;
+        for edge in self.edges.iter_mut() {
+            while edge.first < y && edge.first < edge.end {
+                edge.step();
+                edge.first += 1;
+            }
+            if edge.first == y && y < edge.end {
+                if let Some(slot) = found.get_mut(n) {
+                    *slot = edge.crossing(s).clamp(0, i32::from(width));
+                }
+                n += 1;
+            }
+        }
+        // A row meets a triangle's boundary twice or not at all; an edge wholly right
+        // of the viewport was dropped (a crossing at `width`).
+        let [a, b] = found;
+        (self.lo, self.hi) = if n == 0 {
+            (0, 0)
+        } else {
+            (a.min(b) as u16, a.max(b) as u16)
+        };
     }
 }
 
-/// A fan triangle's depth along the rows, and its run on the current row.
-#[derive(Debug, Clone, Copy)]
-struct FanRow {
-    corners: [ScreenVertex; 3],
-    plane: RowPlane,
-    lo: u16,
-    hi: u16,
+/// The fan triangles of face `f` ([`fan_corners`]) that lie inside the guard band
+/// and have an area on screen, set up for the rows `window` of `viewport`, into `out`
+/// (room for `POLY - 2`: the face fits `POLY` corners).
+pub(crate) fn fan_rows<const POLY: usize>(
+    out: &mut Vec<FanRow, POLY>,
+    mesh: &Mesh<'_>,
+    vertices: &[ProjectedVertex],
+    f: usize,
+    s: u32,
+    viewport: Viewport,
+    window: RowRange,
+) {
+    out.clear();
+    let limit = i64::from(GUARD_BAND_PX) << s;
+    let inside = |v: &ScreenVertex| i64::from(v.x).abs() <= limit && i64::from(v.y).abs() <= limit;
+    for corners in fan_corners(mesh, vertices, f) {
+        if !corners.iter().all(inside) {
+            continue;
+        }
+        if let Some(plane) = DepthPlane::new(&corners, s) {
+            let _ = out.push(FanRow::new(
+                &corners,
+                plane.row_plane(0),
+                s,
+                viewport,
+                window,
+            ));
+        }
+    }
 }
 
 /// A span sink that depth-tests the spans of one face that is not planar into a
 /// [`ZBand`], each pixel with the plane of the fan triangle that holds its centre.
 #[derive(Debug)]
-pub(crate) struct FanSpans<'b, 's, D, const POLY: usize> {
-    band: &'b mut ZBand<'s, D>,
-    fans: Vec<FanRow, POLY>,
+pub(crate) struct FanSpans<'b, 's, 'f, D> {
+    pub band: &'b mut ZBand<'s, D>,
+    /// The face's fan triangles ([`fan_rows`]).
+    pub fans: &'f mut [FanRow],
     /// The face's single plane, for a pixel no fan triangle holds.
-    fallback: RowPlane,
+    pub fallback: RowPlane,
     /// 1 + face index.
-    id: u16,
-    viewport: Viewport,
-    s: u32,
+    pub id: u16,
+    pub viewport: Viewport,
+    /// Sub-pixel bits.
+    pub s: u32,
     /// The row the fans' runs are for.
-    row: Option<u16>,
+    pub row: Option<u16>,
     /// Spans received, for the statistics.
     pub spans: u32,
 }
 
-impl<'b, 's, D: Depth, const POLY: usize> FanSpans<'b, 's, D, POLY> {
-    /// A sink for face `f` (the fan triangles of [`fan_corners`] that have an area on
-    /// screen), with its single plane `fallback`.
-    #[allow(clippy::too_many_arguments)]
-    pub fn new(
-        band: &'b mut ZBand<'s, D>,
-        mesh: &Mesh<'_>,
-        vertices: &[ProjectedVertex],
-        f: usize,
-        fallback: &DepthPlane,
-        viewport: Viewport,
-        s: u32,
-    ) -> Self {
-        let mut fans = Vec::new();
-        for corners in fan_corners(mesh, vertices, f) {
-            if let Some(plane) = DepthPlane::new(&corners, s) {
-                // The face fits `POLY` corners, so its fan triangles fit.
-                let _ = fans.push(FanRow {
-                    corners,
-                    plane: plane.row_plane(0),
-                    lo: 0,
-                    hi: 0,
-                });
-            }
-        }
-        Self {
-            band,
-            fans,
-            fallback: fallback.row_plane(0),
-            id: (f + 1) as u16,
-            viewport,
-            s,
-            row: None,
-            spans: 0,
-        }
-    }
-}
-
-impl<D: Depth, const POLY: usize> SpanSink for FanSpans<'_, '_, D, POLY> {
+impl<D: Depth> SpanSink for FanSpans<'_, '_, '_, D> {
     type Color = BinaryColor;
     type Error = Infallible;
 
@@ -170,14 +185,14 @@ impl<D: Depth, const POLY: usize> SpanSink for FanSpans<'_, '_, D, POLY> {
 
     fn fill_span(&mut self, span: Span, _: BinaryColor) -> Result<(), Infallible> {
         self.spans += 1;
-        let (y, x0, x1) = (span.y(), span.x0(), span.x0() + span.len());
+        let (y, x0, x1) = (span.y(), span.x0(), span.x0().saturating_add(span.len()));
         if self.row != Some(y) {
             self.row = Some(y);
             for fan in self.fans.iter_mut() {
-                (fan.lo, fan.hi) = triangle_run(&fan.corners, self.s, y, self.viewport.width);
+                fan.run(i32::from(y), self.s, self.viewport.width);
             }
         }
-        for fan in &self.fans {
+        for fan in self.fans.iter() {
             let (lo, hi) = (fan.lo.max(x0), fan.hi.min(x1));
             if lo < hi {
                 fan.plane.depth_test(self.band, y, lo, hi, self.id);
@@ -188,7 +203,7 @@ impl<D: Depth, const POLY: usize> SpanSink for FanSpans<'_, '_, D, POLY> {
         let mut x = x0;
         while x < x1 {
             let (mut covered, mut next) = (x, x1);
-            for fan in &self.fans {
+            for fan in self.fans.iter() {
                 if fan.lo <= x && x < fan.hi {
                     covered = covered.max(fan.hi);
                 } else if fan.lo > x {
@@ -203,6 +218,82 @@ impl<D: Depth, const POLY: usize> SpanSink for FanSpans<'_, '_, D, POLY> {
             }
         }
         Ok(())
+    }
+}
+
+/// Faces the line test keeps its answers for: an edge's pixels meet the same few.
+const CACHED_FACES: usize = 2;
+
+/// The line test's memory of the faces of more than three corners it asked about
+/// last: whether each takes its depth from its fan triangles, and the plane of the
+/// fan triangle it used last (an edge's pixels meet the same one).
+#[derive(Debug)]
+pub(crate) struct FanCache {
+    /// 1 + face index (0 none), whether it takes fan depth, the last fan used.
+    slots: [(u16, bool, Option<(usize, DepthPlane)>); CACHED_FACES],
+    next: usize,
+}
+
+impl FanCache {
+    /// Nothing known.
+    pub const fn new() -> Self {
+        Self {
+            slots: [(0, false, None); CACHED_FACES],
+            next: 0,
+        }
+    }
+
+    /// The plane of face `f`'s nearest fan triangle at point (`x`, `y`) (half
+    /// sub-pixel units) among those whose projection holds the point, when `f` takes
+    /// its depth from its fan triangles ([`takes_fan_depth`]); `None` when it does
+    /// not, or when no fan triangle holds the point (its single plane then decides).
+    #[inline(never)]
+    pub fn plane_at(
+        &mut self,
+        mesh: &Mesh<'_>,
+        vertices: &[ProjectedVertex],
+        s: u32,
+        f: usize,
+        x: i64,
+        y: i64,
+    ) -> Option<DepthPlane> {
+        let id = (f + 1) as u16;
+        let k = match self.slots.iter().position(|slot| slot.0 == id) {
+            Some(k) => k,
+            None => {
+                let k = self.next % CACHED_FACES;
+                self.next = (k + 1) % CACHED_FACES;
+                if let Some(slot) = self.slots.get_mut(k) {
+                    *slot = (id, takes_fan_depth(mesh, f), None);
+                }
+                k
+            }
+        };
+        let (_, takes, last) = self.slots.get_mut(k)?;
+        if !*takes {
+            return None;
+        }
+        let mut best: Option<(u32, DepthPlane)> = None;
+        for (k, corners) in fan_corners(mesh, vertices, f).enumerate() {
+            if !polygon_contains(&corners, x, y) {
+                continue;
+            }
+            let fan = match *last {
+                Some((used, fan)) if used == k => fan,
+                _ => {
+                    let Some(fan) = DepthPlane::new(&corners, s) else {
+                        continue;
+                    };
+                    *last = Some((k, fan));
+                    fan
+                }
+            };
+            let q = fan.at(x, y);
+            if best.is_none_or(|(nearest, _)| q > nearest) {
+                best = Some((q, fan));
+            }
+        }
+        best.map(|(_, fan)| fan)
     }
 }
 

@@ -126,7 +126,11 @@ fn a_twisted_quad_in_front_of_a_wall_showed_the_wall_through_its_raised_half() {
         let mut quad = 0;
         for j in 1..=11 {
             for i in 1..=11 {
-                let expect = if i >= 4 && j >= 4 && i + j <= 19 { 1 } else { 2 };
+                let expect = if i >= 4 && j >= 4 && i + j <= 19 {
+                    1
+                } else {
+                    2
+                };
                 assert_eq!(at(i, j), expect, "pixel ({i}, {j}), band {band}");
                 quad += usize::from(expect == 1);
             }
@@ -151,8 +155,12 @@ fn the_wall_s_edges_behind_the_raised_half_of_a_twisted_quad_are_hidden() {
             .filter(|&k| p.hidden[k])
             .map(|k| (k % 32, k / 32))
             .collect();
-        let right = hidden.iter().filter(|&&(i, j)| i == 12 && (4..=7).contains(&j));
-        let bottom = hidden.iter().filter(|&&(i, j)| j == 12 && (4..=7).contains(&i));
+        let right = hidden
+            .iter()
+            .filter(|&&(i, j)| i == 12 && (4..=7).contains(&j));
+        let bottom = hidden
+            .iter()
+            .filter(|&&(i, j)| j == 12 && (4..=7).contains(&i));
         let (right, bottom) = (right.count(), bottom.count());
         assert!(right >= 3 && bottom >= 3, "{hidden:?}");
         assert_eq!(right + bottom, hidden.len(), "{hidden:?}");
