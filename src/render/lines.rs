@@ -403,7 +403,8 @@ fn hidden<const POLY: usize>(
             continue;
         };
         if sure || polygon_contains(poly, px.px, px.py) {
-            if ctx.mesh.face(f).len() > 3 {
+            // (A triangle, clipped to more corners or not, never takes fan depth.)
+            if poly.len() > 3 {
                 if let Some(fan) = fans.plane_at(ctx.mesh, vertices, ctx.s, f, px.px, px.py) {
                     return nearer(&fan, px, REACH_COVERING);
                 }
@@ -421,13 +422,13 @@ fn hidden<const POLY: usize>(
         // beside a vertex every incident face passes close to the edge.
         Some(id) if !touches(ctx.mesh, edge, usize::from(id - 1)) => {
             let f = usize::from(id - 1);
+            let (_, poly, plane) = cache.get(ctx, vertices, drawn, id);
             // As the face is at the pixel centre, extended to the point.
-            let fan = if ctx.mesh.face(f).len() > 3 {
+            let fan = if poly.len() > 3 {
                 fans.plane_at(ctx.mesh, vertices, ctx.s, f, centre(px.x), centre(px.y))
             } else {
                 None
             };
-            let (_, _, plane) = cache.get(ctx, vertices, drawn, id);
             plane
                 .as_ref()
                 .is_some_and(|plane| nearer(fan.as_ref().unwrap_or(plane), px, REACH_EXTENDED))
