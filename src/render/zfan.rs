@@ -224,13 +224,16 @@ impl<D: Depth> SpanSink for FanSpans<'_, '_, '_, D> {
 /// Faces the line test keeps its answers for: an edge's pixels meet the same few.
 const CACHED_FACES: usize = 2;
 
+/// One face in a [`FanCache`]: 1 + face index (0 none), whether it takes fan depth,
+/// and the last fan triangle used (its index among [`fan_corners`], its plane).
+type FanSlot = (u16, bool, Option<(usize, DepthPlane)>);
+
 /// The line test's memory of the faces of more than three corners it asked about
 /// last: whether each takes its depth from its fan triangles, and the plane of the
 /// fan triangle it used last (an edge's pixels meet the same one).
 #[derive(Debug)]
 pub(crate) struct FanCache {
-    /// 1 + face index (0 none), whether it takes fan depth, the last fan used.
-    slots: [(u16, bool, Option<(usize, DepthPlane)>); CACHED_FACES],
+    slots: [FanSlot; CACHED_FACES],
     next: usize,
 }
 

@@ -98,8 +98,9 @@ fn twisted_quad_and_wall(mode: DrawMode, band: u16) -> Probe {
     probe
 }
 
-/// Where the quad's raised fan triangle passes in front of the wall (z = (y - x) / 3
-/// >= 0.5, equal depth going to the quad, the lower face), the quad shows. Its single
+/// Where the quad's raised fan triangle passes in front of the wall (where z = (y - x)
+/// / 3 is 0.5 or more, equal depth going to the quad, the lower face), the quad
+/// shows. Its single
 /// plane (its first fan triangle's, z = 0, extended) put the wall in front of all of
 /// it. Pixels (i, j) with centre x = (i + 0.5) / 8 - 2, y = 2 - (j + 0.5) / 8: the
 /// wall covers 1 <= i, j <= 11, the quad i, j >= 4, and the quad is nearer where
