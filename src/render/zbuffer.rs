@@ -307,7 +307,7 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
             end: i32::from(rows.end),
         };
         let mut fans: Vec<FanRow, POLY> = Vec::new();
-        fan_rows(
+        let complete = fan_rows(
             &mut fans,
             ctx.mesh,
             vertices,
@@ -320,6 +320,7 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
             band,
             fans: &mut fans,
             fallback: plane.row_plane(0),
+            complete,
             id: (f + 1) as u16,
             viewport: ctx.viewport,
             s: ctx.s,

@@ -126,7 +126,10 @@ impl FanRow {
 
 /// The fan triangles of face `f` ([`fan_corners`]) that lie inside the guard band
 /// and have an area on screen, set up for the rows `window` of `viewport`, into `out`
-/// (room for `POLY - 2`: the face fits `POLY` corners).
+/// (room for `POLY - 2`: the face fits `POLY` corners). True when no fan triangle
+/// was left out but for having no area (which covers no pixel centre): the face is
+/// then wholly in view, its polygon is the one scan-converted, and every pixel of
+/// its spans lies in one of them (their parity is its coverage).
 pub(crate) fn fan_rows<const POLY: usize>(
     out: &mut Vec<FanRow, POLY>,
     mesh: &Mesh<'_>,
@@ -135,14 +138,16 @@ pub(crate) fn fan_rows<const POLY: usize>(
     s: u32,
     viewport: Viewport,
     window: RowRange,
-) {
+) -> bool {
     out.clear();
     let limit = i64::from(GUARD_BAND_PX) << s;
     let inside = |v: &ScreenVertex| i64::from(v.x).abs() <= limit && i64::from(v.y).abs() <= limit;
+    let mut kept = 0;
     for corners in fan_corners(mesh, vertices, f) {
         if !corners.iter().all(inside) {
             continue;
         }
+        kept += 1;
         if let Some(plane) = DepthPlane::new(&corners, s) {
             let _ = out.push(FanRow::new(
                 &corners,
@@ -153,6 +158,7 @@ pub(crate) fn fan_rows<const POLY: usize>(
             ));
         }
     }
+    kept + 2 == mesh.face(f).len()
 }
 
 /// A span sink that depth-tests the spans of one face that is not planar into a
@@ -164,6 +170,8 @@ pub(crate) struct FanSpans<'b, 's, 'f, D> {
     pub fans: &'f mut [FanRow],
     /// The face's single plane, for a pixel no fan triangle holds.
     pub fallback: RowPlane,
+    /// Every pixel lies in a fan triangle (see [`fan_rows`]): no fallback needed.
+    pub complete: bool,
     /// 1 + face index.
     pub id: u16,
     pub viewport: Viewport,
@@ -197,6 +205,9 @@ impl<D: Depth> SpanSink for FanSpans<'_, '_, '_, D> {
             if lo < hi {
                 fan.plane.depth_test(self.band, y, lo, hi, self.id);
             }
+        }
+        if self.complete {
+            return Ok(());
         }
         // The pixels of the span that no fan triangle holds: walk the span, jumping
         // over the runs that hold the current pixel.
