@@ -17,6 +17,7 @@ use core::convert::Infallible;
 use embedded_graphics_core::pixelcolor::BinaryColor;
 use heapless::Vec;
 
+use super::coverage::folded;
 use super::lines::polygon_contains;
 use super::transform::{ProjectedVertex, ScreenVertex};
 use super::zband::{Depth, DepthPlane, RowPlane, ZBand};
@@ -236,8 +237,9 @@ impl<D: Depth> SpanSink for FanSpans<'_, '_, '_, D> {
 const CACHED_FACES: usize = 2;
 
 /// One face in a [`FanCache`]: 1 + face index (0 none), whether it takes fan depth,
-/// and the last fan triangle used (its index among [`fan_corners`], its plane).
-type FanSlot = (u16, bool, Option<(usize, DepthPlane)>);
+/// whether it may fold ([`folded`]: else its fan triangles do not overlap), and the
+/// last fan triangle used (its index among [`fan_corners`], its plane).
+type FanSlot = (u16, bool, bool, Option<(usize, DepthPlane)>);
 
 /// The line test's memory of the faces of more than three corners it asked about
 /// last: whether each takes its depth from its fan triangles, and the plane of the
@@ -252,7 +254,7 @@ impl FanCache {
     /// Nothing known.
     pub const fn new() -> Self {
         Self {
-            slots: [(0, false, None); CACHED_FACES],
+            slots: [(0, false, false, None); CACHED_FACES],
             next: 0,
         }
     }
@@ -278,14 +280,23 @@ impl FanCache {
                 let k = self.next % CACHED_FACES;
                 self.next = (k + 1) % CACHED_FACES;
                 if let Some(slot) = self.slots.get_mut(k) {
-                    *slot = (id, takes_fan_depth(mesh, f), None);
+                    let takes = takes_fan_depth(mesh, f);
+                    *slot = (id, takes, takes && folded(mesh.face(f), vertices), None);
                 }
                 k
             }
         };
-        let (_, takes, last) = self.slots.get_mut(k)?;
+        let (_, takes, folds, last) = self.slots.get_mut(k)?;
         if !*takes {
             return None;
+        }
+        // Fan triangles that do not overlap: the one that holds the point is the one
+        // (on a shared side either, they meet there), most often the last one used.
+        if let (false, Some((used, fan))) = (*folds, *last) {
+            let mut fans = fan_corners(mesh, vertices, f);
+            if fans.nth(used).is_some_and(|c| polygon_contains(&c, x, y)) {
+                return Some(fan);
+            }
         }
         let mut best: Option<(u32, DepthPlane)> = None;
         for (k, corners) in fan_corners(mesh, vertices, f).enumerate() {
@@ -302,6 +313,9 @@ impl FanCache {
                     fan
                 }
             };
+            if !*folds {
+                return Some(fan);
+            }
             let q = fan.at(x, y);
             if best.is_none_or(|(nearest, _)| q > nearest) {
                 best = Some((q, fan));
