@@ -25,6 +25,11 @@ use crate::{Error, FillRule, ScanConverter, ScreenPoint, SpanSink};
 
 /// The Z-buffer + P-buffer renderer with S = `Frac` sub-pixel bits, room for
 /// `EDGES` polygon edges in the scan converter and `POLY` vertices per clipped face.
+///
+/// A face of more than three corners that is not planar takes the depth of each
+/// pixel from its fan triangle `(v0, vi, vi+1)` that holds the pixel centre
+/// (CONVENTIONS.md), in the depth test and in the hidden-line test; drawing one
+/// sets up its fan triangles on the stack, about 150 bytes for each of `POLY`.
 #[derive(Debug)]
 pub struct ZBufferRenderer<Frac: LeEqU32, const EDGES: usize, const POLY: usize> {
     scan: ScanConverter<EDGES>,

@@ -4,8 +4,8 @@
 //!
 //! The polygon is scan-converted as any face is, so its coverage is unchanged; each of
 //! its spans is then depth-tested piece by piece: the part inside fan triangle `k`'s
-//! projection (its run on the row, by the scan converter's own exact crossing rule)
-//! with triangle `k`'s plane. Where fan triangles overlap (the face folds) the pixel
+//! projection (its run on the row, from its edges' DDAs: the scan converter's own
+//! exact crossing rule) with triangle `k`'s plane. Where fan triangles overlap (the face folds) the pixel
 //! keeps the nearest. The parity of the fan triangles is the polygon's coverage, so
 //! every pixel of a span lies in at least one of them; the face's single plane
 //! ([`DepthPlane::new`]) is only the fallback for a pixel that does not (a fan triangle

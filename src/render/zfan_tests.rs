@@ -167,3 +167,10 @@ fn the_wall_s_edges_behind_the_raised_half_of_a_twisted_quad_are_hidden() {
         assert_eq!(right + bottom, hidden.len(), "{hidden:?}");
     }
 }
+
+/// The stack a face that is not planar needs, per `POLY` (as `ZBufferRenderer` says).
+#[test]
+fn a_fan_triangle_set_up_for_the_rows_takes_about_150_bytes() {
+    let size = size_of::<super::FanRow>();
+    assert!((140..=160).contains(&size), "{size}");
+}
