@@ -26,6 +26,7 @@ mod two_squares;
 mod warnock;
 mod zband;
 mod zbuffer;
+mod zfan;
 
 use embedded_graphics_core::pixelcolor::BinaryColor;
 use heapless::Vec;

@@ -267,6 +267,37 @@ impl RowPlane {
     pub fn max_q(&self) -> u32 {
         (self.q_max >> STEP_BITS) as u32
     }
+
+    /// Depth-tests pixels `x0..x1` of row `y` of `band` for face `id` with this
+    /// plane (made for row 0), the values [`FaceSpans`] would give: nearer by more
+    /// than the tie wins, an empty pixel takes any face, and a pixel this face holds
+    /// already (from another of its fan triangles) takes the nearer of the two.
+    pub fn depth_test<D: Depth>(&self, band: &mut ZBand<'_, D>, y: u16, x0: u16, x1: u16, id: u16) {
+        let Some(start) = band.ids.index(x0, y) else {
+            return;
+        };
+        let len = usize::from(x1.saturating_sub(x0));
+        let (Some(depth), Some(ids)) = (
+            band.depth.get_mut(start..start + len),
+            band.ids.ids.get_mut(start..start + len),
+        ) else {
+            return;
+        };
+        // As in `at_xy`, then one add a pixel (no wrap, see `at`).
+        let mut acc = self
+            .row_q
+            .wrapping_add(self.dq_dy.wrapping_mul(i64::from(y)))
+            .wrapping_add(self.dq_dx.wrapping_mul(i64::from(x0)));
+        for (d, held) in depth.iter_mut().zip(ids.iter_mut()) {
+            let q = D::from_q((acc.clamp(self.q_min, self.q_max) >> STEP_BITS) as u32);
+            let margin = if *held == id { 0 } else { self.tie };
+            if *held == 0 || q.to_q() > d.to_q().saturating_add(margin) {
+                *d = q;
+                *held = id;
+            }
+            acc = acc.wrapping_add(self.dq_dx);
+        }
+    }
 }
 
 impl DepthPlane {

@@ -15,14 +15,21 @@ use super::compose::{self, Compose, FrameProbe, Palette};
 use super::lines::{line_pass, LineMasks};
 use super::transform::{ProjectedVertex, ScreenVertex};
 use super::zband::{Depth, DepthPlane, FaceSpans, IdBand, ZBand};
+use super::zfan::{fan_rows, takes_fan_depth, FanRow, FanSpans};
 use super::{band_rows, begin_frame, bit, face_polygon, FrameCtx, Settings, Stats, Workspace};
 use crate::camera::Camera;
 use crate::geometry::Subpixel;
 use crate::mesh::{EdgeAdjacency, Mesh};
+use crate::scan::RowRange;
 use crate::{Error, FillRule, ScanConverter, ScreenPoint, SpanSink};
 
 /// The Z-buffer + P-buffer renderer with S = `Frac` sub-pixel bits, room for
 /// `EDGES` polygon edges in the scan converter and `POLY` vertices per clipped face.
+///
+/// A face of more than three corners that is not planar takes the depth of each
+/// pixel from its fan triangle `(v0, vi, vi+1)` that holds the pixel centre
+/// (CONVENTIONS.md), in the depth test and in the hidden-line test; drawing one
+/// sets up its fan triangles on the stack, about 150 bytes for each of `POLY`.
 #[derive(Debug)]
 pub struct ZBufferRenderer<Frac: LeEqU32, const EDGES: usize, const POLY: usize> {
     scan: ScanConverter<EDGES>,
@@ -254,6 +261,13 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
             for v in &poly {
                 let _ = points.push(ScreenPoint::from_bits(v.x, v.y));
             }
+            // A face clipped to three corners keeps its single plane: it was a
+            // triangle, or (one clipping plane) it kept one corner, so that every fan
+            // triangle has a corner cut away (see `zfan`).
+            if poly.len() > 3 && takes_fan_depth(ctx.mesh, f) {
+                spans += self.fan_face(ctx, vertices, f, &points, &plane, band)?;
+                continue;
+            }
             let mut sink = FaceSpans {
                 band: &mut *band,
                 plane,
@@ -276,5 +290,54 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
             spans += sink.spans;
         }
         Ok(spans)
+    }
+
+    /// Depth-tests face `f`, not planar, whose clipped polygon is `points` and whose
+    /// single plane is `plane`: each pixel of the polygon's spans takes its depth from
+    /// the fan triangle that holds its centre (see [`FanSpans`]). Out of line, so the
+    /// fan triangles' storage is on the stack only while such a face is drawn.
+    #[inline(never)]
+    fn fan_face<D: Depth, T>(
+        &mut self,
+        ctx: &FrameCtx<'_, '_>,
+        vertices: &[ProjectedVertex],
+        f: usize,
+        points: &[ScreenPoint<Frac>],
+        plane: &DepthPlane,
+        band: &mut ZBand<'_, D>,
+    ) -> Result<u32, Error<T>> {
+        let rows = band.ids.first..band.ids.first + band.ids.held;
+        let window = RowRange {
+            first: i32::from(rows.start),
+            end: i32::from(rows.end),
+        };
+        let mut fans: Vec<FanRow, POLY> = Vec::new();
+        let complete = fan_rows(
+            &mut fans,
+            ctx.mesh,
+            vertices,
+            f,
+            ctx.s,
+            ctx.viewport,
+            window,
+        );
+        let mut sink = FanSpans {
+            band,
+            fans: &mut fans,
+            fallback: plane.row_plane(0),
+            complete,
+            id: (f + 1) as u16,
+            viewport: ctx.viewport,
+            s: ctx.s,
+            row: None,
+            spans: 0,
+        };
+        self.scan
+            .fill_rows(points, FillRule::EvenOdd, rows, BinaryColor::On, &mut sink)
+            .map_err(|e| match e {
+                Error::Target(never) => match never {},
+                other => other.widen(),
+            })?;
+        Ok(sink.spans)
     }
 }
