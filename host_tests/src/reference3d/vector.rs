@@ -1,0 +1,40 @@
+//! 3-vector arithmetic of the reference: [`V3`], its helpers and the Newell normal.
+
+/// A 3-vector.
+pub type V3 = [f64; 3];
+
+pub(super) fn sub(a: V3, b: V3) -> V3 {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+pub(super) fn add(a: V3, b: V3) -> V3 {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+pub(super) fn scale(a: V3, s: f64) -> V3 {
+    [a[0] * s, a[1] * s, a[2] * s]
+}
+pub(super) fn dot(a: V3, b: V3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+pub(super) fn cross(a: V3, b: V3) -> V3 {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+pub(super) fn norm(a: V3) -> f64 {
+    dot(a, a).sqrt()
+}
+
+/// Newell normal of a polygon (not normalized; zero for degenerate polygons).
+pub fn newell_normal(pts: &[V3]) -> V3 {
+    let n = pts.len();
+    let mut r = [0.0; 3];
+    for i in 0..n {
+        let (a, b) = (pts[i], pts[(i + 1) % n]);
+        r[0] += (a[1] - b[1]) * (a[2] + b[2]);
+        r[1] += (a[2] - b[2]) * (a[0] + b[0]);
+        r[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    }
+    r
+}
