@@ -6,7 +6,6 @@ use heapless::Vec;
 
 use super::transform::{ProjectedVertex, ScreenVertex};
 use super::zband::{DepthPlane, IdBand};
-use super::zfan::FanCache;
 use super::{bit, face_polygon, FrameCtx, Settings};
 use crate::mesh::{face_owns_edge, EdgeAdjacency, EdgeKind, Mesh, MeshEdge};
 use crate::scan::edge::div_rem_euclid;
@@ -252,7 +251,6 @@ pub(crate) fn line_pass<const POLY: usize>(
     let hide = settings.mode.needs_depth();
     // The last face tested for covering an edge point, with its polygon and plane.
     let mut cache = FaceCache::<POLY>::new();
-    let mut fans = FanCache::new();
     for (e, edge) in edges.edges().iter().enumerate() {
         if !bit(features, e) {
             continue;
@@ -268,8 +266,7 @@ pub(crate) fn line_pass<const POLY: usize>(
         }
         let rows = band.top..band.top + band.rows;
         walk_segment(&a, &b, ctx.s, ctx.viewport.width, rows, |px| {
-            let hidden =
-                hide && hidden(ctx, vertices, drawn, edge, band, &px, &mut cache, &mut fans);
+            let hidden = hide && hidden(ctx, vertices, drawn, edge, band, &px, &mut cache);
             masks.set(px.x, px.y - band.top, hidden);
         });
     }
@@ -349,8 +346,6 @@ impl<const POLY: usize> FaceCache<POLY> {
 /// centre), the face nearest at the neighbouring centre on that side, if that one
 /// contains it. A face that contains the point hides it when nearer by a small
 /// margin; the centre's face extended to the point needs a wide one (see [`nearer`]).
-/// A face that is not planar has there the depth of its fan triangle ([`FanCache`]).
-#[allow(clippy::too_many_arguments)]
 fn hidden<const POLY: usize>(
     ctx: &FrameCtx<'_, '_>,
     vertices: &[ProjectedVertex],
@@ -359,7 +354,6 @@ fn hidden<const POLY: usize>(
     band: &IdBand<'_>,
     px: &EdgePixel,
     cache: &mut FaceCache<POLY>,
-    fans: &mut FanCache,
 ) -> bool {
     let own = |id: u16| {
         let f = usize::from(id - 1);
@@ -403,12 +397,6 @@ fn hidden<const POLY: usize>(
             continue;
         };
         if sure || polygon_contains(poly, px.px, px.py) {
-            // (A triangle, clipped to more corners or not, never takes fan depth.)
-            if poly.len() > 3 {
-                if let Some(fan) = fans.plane_at(ctx.mesh, vertices, ctx.s, f, px.px, px.py) {
-                    return nearer(&fan, px, REACH_COVERING);
-                }
-            }
             return nearer(plane, px, REACH_COVERING);
         }
         // Only the face at the pixel centre is extended to the point; a neighbour
@@ -421,17 +409,10 @@ fn hidden<const POLY: usize>(
         // Extended to the point and sharing a vertex with the edge, it cannot say:
         // beside a vertex every incident face passes close to the edge.
         Some(id) if !touches(ctx.mesh, edge, usize::from(id - 1)) => {
-            let f = usize::from(id - 1);
-            let (_, poly, plane) = cache.get(ctx, vertices, drawn, id);
-            // As the face is at the pixel centre, extended to the point.
-            let fan = if poly.len() > 3 {
-                fans.plane_at(ctx.mesh, vertices, ctx.s, f, centre(px.x), centre(px.y))
-            } else {
-                None
-            };
+            let (_, _, plane) = cache.get(ctx, vertices, drawn, id);
             plane
                 .as_ref()
-                .is_some_and(|plane| nearer(fan.as_ref().unwrap_or(plane), px, REACH_EXTENDED))
+                .is_some_and(|plane| nearer(plane, px, REACH_EXTENDED))
         }
         _ => false,
     }

@@ -17,8 +17,6 @@ use core::convert::Infallible;
 use embedded_graphics_core::pixelcolor::BinaryColor;
 use heapless::Vec;
 
-use super::coverage::folded;
-use super::lines::polygon_contains;
 use super::transform::{ProjectedVertex, ScreenVertex};
 use super::zband::{Depth, DepthPlane, RowPlane, ZBand};
 use crate::mesh::Mesh;
@@ -230,98 +228,6 @@ impl<D: Depth> SpanSink for FanSpans<'_, '_, '_, D> {
             }
         }
         Ok(())
-    }
-}
-
-/// Faces the line test keeps its answers for: an edge's pixels meet the same few.
-const CACHED_FACES: usize = 2;
-
-/// One face in a [`FanCache`]: 1 + face index (0 none), whether it takes fan depth,
-/// whether it may fold ([`folded`]: else its fan triangles do not overlap), and the
-/// last fan triangle used (its index among [`fan_corners`], its plane).
-type FanSlot = (u16, bool, bool, Option<(usize, DepthPlane)>);
-
-/// The line test's memory of the faces of more than three corners it asked about
-/// last: whether each takes its depth from its fan triangles, and the plane of the
-/// fan triangle it used last (an edge's pixels meet the same one).
-#[derive(Debug)]
-pub(crate) struct FanCache {
-    slots: [FanSlot; CACHED_FACES],
-    next: usize,
-}
-
-impl FanCache {
-    /// Nothing known.
-    pub const fn new() -> Self {
-        Self {
-            slots: [(0, false, false, None); CACHED_FACES],
-            next: 0,
-        }
-    }
-
-    /// The plane of face `f`'s nearest fan triangle at point (`x`, `y`) (half
-    /// sub-pixel units) among those whose projection holds the point, when `f` takes
-    /// its depth from its fan triangles ([`takes_fan_depth`]); `None` when it does
-    /// not, or when no fan triangle holds the point (its single plane then decides).
-    #[inline(never)]
-    pub fn plane_at(
-        &mut self,
-        mesh: &Mesh<'_>,
-        vertices: &[ProjectedVertex],
-        s: u32,
-        f: usize,
-        x: i64,
-        y: i64,
-    ) -> Option<DepthPlane> {
-        let id = (f + 1) as u16;
-        let k = match self.slots.iter().position(|slot| slot.0 == id) {
-            Some(k) => k,
-            None => {
-                let k = self.next % CACHED_FACES;
-                self.next = (k + 1) % CACHED_FACES;
-                if let Some(slot) = self.slots.get_mut(k) {
-                    let takes = takes_fan_depth(mesh, f);
-                    *slot = (id, takes, takes && folded(mesh.face(f), vertices), None);
-                }
-                k
-            }
-        };
-        let (_, takes, folds, last) = self.slots.get_mut(k)?;
-        if !*takes {
-            return None;
-        }
-        // Fan triangles that do not overlap: the one that holds the point is the one
-        // (on a shared side either, they meet there), most often the last one used.
-        if let (false, Some((used, fan))) = (*folds, *last) {
-            let mut fans = fan_corners(mesh, vertices, f);
-            if fans.nth(used).is_some_and(|c| polygon_contains(&c, x, y)) {
-                return Some(fan);
-            }
-        }
-        let mut best: Option<(u32, DepthPlane)> = None;
-        for (k, corners) in fan_corners(mesh, vertices, f).enumerate() {
-            if !polygon_contains(&corners, x, y) {
-                continue;
-            }
-            let fan = match *last {
-                Some((used, fan)) if used == k => fan,
-                _ => {
-                    let Some(fan) = DepthPlane::new(&corners, s) else {
-                        continue;
-                    };
-                    *last = Some((k, fan));
-                    fan
-                }
-            };
-            if !*folds {
-                return Some(fan);
-            }
-            let q = fan.at(x, y);
-            if best.is_none_or(|(nearest, _)| q > nearest) {
-                best = Some((q, fan));
-            }
-        }
-        best.map(|(_, fan)| fan)
     }
 }
 
