@@ -8,34 +8,18 @@ use fixed::types::extra::U4;
 
 use crate::camera::Camera;
 use crate::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
-use crate::render::two_squares::Frame32;
+use crate::render::two_squares::{Frame32, Ids};
 use crate::render::{
-    storage_rows, Cull, DrawMode, FrameProbe, MonoPalette, ProjectedVertex, Settings, Workspace,
+    storage_rows, Cull, DrawMode, MonoPalette, ProjectedVertex, Settings, Workspace,
     ZBufferRenderer,
 };
 use crate::{Pattern, Projection};
-
-/// Keeps the frame's face ids and hidden-line pixels (32 x 32).
-struct Probe {
-    ids: Vec<u16>,
-    hidden: Vec<bool>,
-}
-
-impl FrameProbe for Probe {
-    fn row(&mut self, y: u16, ids: &[u16], _: &[u32], hidden: &[u32]) {
-        let at = usize::from(y) * 32;
-        self.ids[at..at + 32].copy_from_slice(ids);
-        for x in 0..32 {
-            self.hidden[at + x] = hidden[0] & (1 << x) != 0;
-        }
-    }
-}
 
 /// Face 0, a quad twisted about its diagonal v0-v2: fan triangle (v0, v1, v2) lies in
 /// z = 0, (v0, v2, v3) rises to z = 1 at v3, in the plane z = (y - x) / 3. Face 1, a
 /// square wall at z = 0.5 over the corner v3. Seen from +z (orthographic, 8 px per
 /// unit, screen x = 8 (x + 2), y = 8 (2 - y)); the wall is a band of 4 rows of 16 px.
-fn twisted_quad_and_wall(mode: DrawMode, band: u16) -> Probe {
+fn twisted_quad_and_wall(band: u16) -> Vec<u16> {
     let v = [
         [-1.5, -1.5, 0.0],
         [1.5, -1.5, 0.0],
@@ -62,7 +46,7 @@ fn twisted_quad_and_wall(mode: DrawMode, band: u16) -> Probe {
     )
     .unwrap();
     let settings = Settings {
-        mode,
+        mode: DrawMode::Surfaces,
         cull: Cull::Off,
         pattern: Pattern::PAPER,
     };
@@ -79,10 +63,7 @@ fn twisted_quad_and_wall(mode: DrawMode, band: u16) -> Probe {
         ids: &mut ids,
         lines: &mut lines,
     };
-    let mut probe = Probe {
-        ids: vec![0; 32 * 32],
-        hidden: vec![false; 32 * 32],
-    };
+    let mut probe = Ids(vec![0; 32 * 32]);
     ZBufferRenderer::<U4, 16, 16>::new()
         .render(
             &mesh,
@@ -95,7 +76,7 @@ fn twisted_quad_and_wall(mode: DrawMode, band: u16) -> Probe {
             &mut probe,
         )
         .unwrap();
-    probe
+    probe.0
 }
 
 /// Where the quad's raised fan triangle passes in front of the wall (where z = (y - x)
@@ -122,8 +103,8 @@ fn twisted_quad_and_wall(mode: DrawMode, band: u16) -> Probe {
 #[test]
 fn a_twisted_quad_in_front_of_a_wall_showed_the_wall_through_its_raised_half() {
     for band in [32, 5] {
-        let p = twisted_quad_and_wall(DrawMode::Surfaces, band);
-        let at = |i: usize, j: usize| p.ids[j * 32 + i];
+        let ids = twisted_quad_and_wall(band);
+        let at = |i: usize, j: usize| ids[j * 32 + i];
         let mut quad = 0;
         for j in 1..=11 {
             for i in 1..=11 {
