@@ -19,6 +19,11 @@
 //! spans with the plane of the fan triangle that holds the pixel centre, and is held
 //! to bounds here too.
 //!
+//! The hidden-line test, shared by every engine, gave such a face one plane too, and
+//! trusted the edge's own face at the pixel centre even where that face, seen
+//! edge-on, turns away within the half pixel to the edge point. Its line pixels are
+//! now counted against the reference here as well.
+//!
 //! `cargo test --release -p host_tests --test non_planar_faces -- --nocapture`
 
 use std::path::PathBuf;
@@ -310,5 +315,151 @@ fn random_twisted_quads_in_a_bsp_order_are_as_faithful_as_the_z_buffer() {
             zbuffer[0]
         );
         assert!(t[2] + t[3] <= 100, "depth-order {} + far {}", t[2], t[3]);
+    }
+}
+
+/// Line counts of `engine` in the dashed mode against the reference: misclassified
+/// line pixels, line pixels, visible and hidden length missing (px), and the
+/// reference's visible and hidden length.
+fn line_counts(
+    mesh: &MeshData,
+    cam: &CameraSpec,
+    w: usize,
+    h: usize,
+    engine: EngineSpec,
+) -> [f64; 6] {
+    let spec = RenderSpec {
+        width: w,
+        height: h,
+        band: h,
+        subpixel: 4,
+        depth_bits: 32,
+        engine,
+        mode: ModeSpec::Dashed,
+        ..RenderSpec::default()
+    };
+    let rf = reference_frame(mesh, cam, &spec).expect("reference");
+    let frame = render_frame(mesh, cam, &spec).expect("library");
+    let l = compare(engine.name(), &frame, &rf, false, true)
+        .lines
+        .expect("line metrics");
+    [
+        l.misclassified as f64,
+        l.line_pixels as f64,
+        l.visible_missing,
+        l.hidden_missing,
+        l.visible_len,
+        l.hidden_len,
+    ]
+}
+
+#[test]
+fn random_twisted_quads_hide_lines_behind_their_fan_triangles() {
+    let mut rng = Rng::new(0x7157_ed00);
+    let engines = [
+        EngineSpec::CodeFill,
+        EngineSpec::Scanline,
+        EngineSpec::ZBuffer,
+    ];
+    let mut total = [[0f64; 6]; 3];
+    for k in 0..200 {
+        let (mesh, cam, w, h) = twisted_quads(&mut rng);
+        for (e, &engine) in engines.iter().enumerate() {
+            let c = line_counts(&mesh, &cam, w, h, engine);
+            if c[0] > 0.0 || c[2] + c[3] >= 1.0 {
+                println!("scene {k} {}: {c:?}", engine.name());
+            }
+            for (t, n) in total[e].iter_mut().zip(c) {
+                *t += n;
+            }
+        }
+    }
+    for (engine, t) in engines.iter().zip(total) {
+        println!(
+            "{:>8}: misclassified {} of {} line px, visible missing {:.1} of {:.0} px, hidden missing {:.1} of {:.0} px (200 scenes)",
+            engine.name(),
+            t[0],
+            t[1],
+            t[2],
+            t[4],
+            t[3],
+            t[5]
+        );
+    }
+    // The line test took one plane per face (its largest fan triangle's) and trusted
+    // the edge's own face at the pixel centre: codefill 187 misclassified, 74.6 px
+    // visible and 204.2 px hidden length missing. With fan depth where the plane
+    // cannot decide, and the face beside asked after the own face: 4, 2.7, 2.5 (the
+    // same scenes with every quad made planar: 6, 1.7, 3.2 before either change).
+    for (engine, t) in engines.iter().zip(total) {
+        assert!(t[1] > 100_000.0 && t[5] > 40_000.0, "the scenes draw lines");
+        let limit = if *engine == EngineSpec::Scanline {
+            // Its fill gives a non-planar face one plane: the ids the line test
+            // reads are off where quads cross (measured 19, 2.2, 32.4).
+            [40.0, 10.0, 60.0]
+        } else {
+            [12.0, 8.0, 8.0]
+        };
+        assert!(
+            t[0] <= limit[0] && t[2] <= limit[1] && t[3] <= limit[2],
+            "{}: misclassified {}, visible missing {:.1} px, hidden missing {:.1} px",
+            engine.name(),
+            t[0],
+            t[2],
+            t[3]
+        );
+    }
+}
+
+#[test]
+fn suzanne_from_sixteen_sides_hides_lines_behind_fan_triangles() {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shared/models/suzanne.obj");
+    if !path.is_file() {
+        println!("note: {} not found; skipped", path.display());
+        return;
+    }
+    let mesh = host_tests::obj::load_obj(&path).expect("suzanne loads");
+    let engines = [
+        EngineSpec::CodeFill,
+        EngineSpec::Scanline,
+        EngineSpec::ZBuffer,
+    ];
+    let mut total = [[0f64; 6]; 3];
+    for (w, h) in [(400, 240), (128, 64)] {
+        let cam0 = host_tests::fit::fit_camera(&mesh, w, h);
+        for k in 0..16 {
+            let cam = orbit(&cam0, k);
+            for (e, &engine) in engines.iter().enumerate() {
+                let c = line_counts(&mesh, &cam, w, h, engine);
+                for (t, n) in total[e].iter_mut().zip(c) {
+                    *t += n;
+                }
+            }
+        }
+    }
+    for (engine, t) in engines.iter().zip(total) {
+        println!(
+            "{:>8}: misclassified {} of {} line px, visible missing {:.1} of {:.0} px, hidden missing {:.1} of {:.0} px (32 views)",
+            engine.name(),
+            t[0],
+            t[1],
+            t[2],
+            t[4],
+            t[3],
+            t[5]
+        );
+    }
+    // Measured 7 misclassified, 3.7 px visible and 4.2 px hidden length missing for
+    // each engine (one plane per face and the own face trusted: 8, 5.9, 4.9).
+    for (engine, t) in engines.iter().zip(total) {
+        assert!(t[1] > 50_000.0, "the views draw lines");
+        assert!(
+            t[0] <= 12.0 && t[2] <= 5.0 && t[3] <= 8.0,
+            "{}: misclassified {}, visible missing {:.1} px, hidden missing {:.1} px",
+            engine.name(),
+            t[0],
+            t[2],
+            t[3]
+        );
     }
 }

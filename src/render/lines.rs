@@ -4,6 +4,7 @@
 
 use heapless::Vec;
 
+use super::bend::{Bend, FaceView};
 use super::transform::{ProjectedVertex, ScreenVertex};
 use super::zband::{DepthPlane, IdBand};
 use super::{bit, face_polygon, FrameCtx, Settings};
@@ -297,16 +298,32 @@ pub(crate) fn edge_on_screen(
 /// Faces the line pass keeps set up: an edge's pixels meet the same few faces.
 const CACHED_FACES: usize = 2;
 
-/// The last faces tested by the line pass: polygon and depth plane.
+/// A face the line pass has set up: 1 + its index (0 none), its polygon on screen,
+/// its depth plane, and how far its fan triangles bend off that plane.
+struct CachedFace<const POLY: usize> {
+    id: u16,
+    poly: Vec<ScreenVertex, POLY>,
+    plane: Option<DepthPlane>,
+    bend: Bend,
+}
+
+/// The last faces tested by the line pass.
 struct FaceCache<const POLY: usize> {
-    slots: [(u16, Vec<ScreenVertex, POLY>, Option<DepthPlane>); CACHED_FACES],
+    slots: [CachedFace<POLY>; CACHED_FACES],
     next: usize,
 }
 
 impl<const POLY: usize> FaceCache<POLY> {
     fn new() -> Self {
         Self {
-            slots: [const { (0, Vec::new(), None) }; CACHED_FACES],
+            slots: [const {
+                CachedFace {
+                    id: 0,
+                    poly: Vec::new(),
+                    plane: None,
+                    bend: Bend::NONE,
+                }
+            }; CACHED_FACES],
             next: 0,
         }
     }
@@ -321,31 +338,36 @@ impl<const POLY: usize> FaceCache<POLY> {
         vertices: &[ProjectedVertex],
         drawn: &[u32],
         id: u16,
-    ) -> &(u16, Vec<ScreenVertex, POLY>, Option<DepthPlane>) {
-        let k = match self.slots.iter().position(|slot| slot.0 == id) {
+    ) -> &mut CachedFace<POLY> {
+        let k = match self.slots.iter().position(|slot| slot.id == id) {
             Some(k) => k,
             None => {
                 let k = self.next;
                 self.next = (self.next + 1) % CACHED_FACES;
-                let (cid, poly, plane) = &mut self.slots[k];
+                let slot = &mut self.slots[k];
                 let f = usize::from(id - 1);
-                *cid = id;
-                *plane = None;
-                if bit(drawn, f) && face_polygon(ctx, vertices, f, poly).unwrap_or(false) {
-                    *plane = DepthPlane::new(poly, ctx.s);
+                slot.id = id;
+                slot.plane = None;
+                slot.bend = Bend::NONE;
+                if bit(drawn, f) && face_polygon(ctx, vertices, f, &mut slot.poly).unwrap_or(false)
+                {
+                    slot.plane = DepthPlane::new(&slot.poly, ctx.s);
+                    slot.bend = Bend::of(ctx.mesh.face(f).len());
                 }
                 k
             }
         };
-        &self.slots[k]
+        &mut self.slots[k]
     }
 }
 
 /// Whether the edge point of `px` is hidden. The face nearest at the pixel centre
 /// decides, or, when it does not contain the edge point (up to half a pixel off the
-/// centre), the face nearest at the neighbouring centre on that side, if that one
-/// contains it. A face that contains the point hides it when nearer by a small
+/// centre) or is one of the edge's own faces, the face nearest at the neighbouring
+/// centre on that side, if that one contains it. A face that contains the point hides it when nearer by a small
 /// margin; the centre's face extended to the point needs a wide one (see [`nearer`]).
+// Out of line: inlined, its three depth tests' temporaries took their own stack.
+#[inline(never)]
 fn hidden<const POLY: usize>(
     ctx: &FrameCtx<'_, '_>,
     vertices: &[ProjectedVertex],
@@ -378,12 +400,20 @@ fn hidden<const POLY: usize>(
     };
     let nearest = band.id(px.x, px.y);
     let mut extended = None;
+    let mut after_own = false;
     for id in [Some(nearest), beside]
         .into_iter()
         .flatten()
         .filter(|&id| id != 0)
     {
         if own(id) {
+            // The edge's own face at the centre may turn away within the half pixel
+            // to the edge point (seen edge-on), and another face, nearest beside, be
+            // in front of the point: that one is asked still.
+            if id == nearest && beside.is_some_and(|b| b != id) {
+                after_own = true;
+                continue;
+            }
             return false;
         }
         // A face covering the pixel centre contains an edge point at the centre; a
@@ -392,12 +422,19 @@ fn hidden<const POLY: usize>(
         let f = usize::from(id - 1);
         let sure = id == nearest
             && (beside.is_none() || (beside == Some(id) && ctx.mesh.face(f).len() == 3));
-        let (_, poly, plane) = cache.get(ctx, vertices, drawn, id);
-        let Some(plane) = plane.as_ref() else {
+        let slot = cache.get(ctx, vertices, drawn, id);
+        let Some(plane) = slot.plane.as_ref() else {
             continue;
         };
-        if sure || polygon_contains(poly, px.px, px.py) {
-            return nearer(plane, px, REACH_COVERING);
+        let face = view(ctx, vertices, f, &slot.poly, plane);
+        if after_own {
+            // Only a face that covers the point hides it now (none is extended):
+            // the depth first, the cheaper question and most often no.
+            return slot.bend.nearer(&face, px, (px.px, px.py), REACH_COVERING)
+                && polygon_contains(&slot.poly, px.px, px.py);
+        }
+        if sure || polygon_contains(&slot.poly, px.px, px.py) {
+            return slot.bend.nearer(&face, px, (px.px, px.py), REACH_COVERING);
         }
         // Only the face at the pixel centre is extended to the point; a neighbour
         // counts only where it covers the point.
@@ -409,12 +446,33 @@ fn hidden<const POLY: usize>(
         // Extended to the point and sharing a vertex with the edge, it cannot say:
         // beside a vertex every incident face passes close to the edge.
         Some(id) if !touches(ctx.mesh, edge, usize::from(id - 1)) => {
-            let (_, _, plane) = cache.get(ctx, vertices, drawn, id);
-            plane
-                .as_ref()
-                .is_some_and(|plane| nearer(plane, px, REACH_EXTENDED))
+            let f = usize::from(id - 1);
+            let slot = cache.get(ctx, vertices, drawn, id);
+            // As the face is at the pixel centre, extended to the point.
+            let at = (centre(px.x), centre(px.y));
+            let (poly, bend) = (&slot.poly, &mut slot.bend);
+            slot.plane.as_ref().is_some_and(|plane| {
+                bend.nearer(&view(ctx, vertices, f, poly, plane), px, at, REACH_EXTENDED)
+            })
         }
         _ => false,
+    }
+}
+
+/// Face `f` with its polygon and plane, for [`Bend::nearer`].
+fn view<'a>(
+    ctx: &'a FrameCtx<'_, '_>,
+    vertices: &'a [ProjectedVertex],
+    f: usize,
+    poly: &'a [ScreenVertex],
+    plane: &'a DepthPlane,
+) -> FaceView<'a> {
+    FaceView {
+        mesh: ctx.mesh,
+        vertices,
+        f,
+        poly,
+        plane,
     }
 }
 
@@ -423,9 +481,14 @@ fn hidden<const POLY: usize>(
 /// sixteenths of the plane's depth change over one pixel. This also keeps an edge
 /// that lies in another face's plane visible: equal depth does not hide.
 pub(crate) fn nearer(plane: &DepthPlane, px: &EdgePixel, reach: u64) -> bool {
+    plane.at(px.px, px.py) > px.q.saturating_add(margin(plane, px, reach))
+}
+
+/// The margin of [`nearer`]: the rounding of the edge point's nearness plus `reach`
+/// sixteenths of the plane's change over one pixel.
+pub(crate) fn margin(plane: &DepthPlane, px: &EdgePixel, reach: u64) -> u32 {
     let slope = (u64::from(plane.change_per_pixel()) * reach) >> 4;
-    let eps = (px.q >> 16).max(1 << 8) + slope.min(1 << 31) as u32;
-    plane.at(px.px, px.py) > px.q.saturating_add(eps)
+    (px.q >> 16).max(1 << 8) + slope.min(1 << 31) as u32
 }
 
 /// Depth margins of the line test, in sixteenths of a pixel's depth change along the

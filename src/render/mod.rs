@@ -11,6 +11,7 @@
 
 mod abuffer;
 mod active;
+mod bend;
 mod codefill;
 mod compose;
 mod coverage;

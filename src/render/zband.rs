@@ -40,7 +40,7 @@ impl Depth for u32 {
 }
 
 /// Fraction bits of the per-pixel depth step.
-const STEP_BITS: u32 = 16;
+pub(crate) const STEP_BITS: u32 = 16;
 
 /// Units of `2^-31` nearness that the projection's rounding may put between two
 /// faces through the same points.
@@ -146,10 +146,22 @@ impl DepthPlane {
     /// face's vertices: from the fast form (multiplies and a shift, no division),
     /// within `2^-(31 + STEP_BITS)` per pixel of distance of the exact plane.
     pub fn at(&self, x: i64, y: i64) -> u32 {
+        (self.unclamped(x, y).clamp(self.q_min, self.q_max) >> STEP_BITS) as u32
+    }
+
+    /// The range of nearness over the face's vertices, which holds every value of
+    /// [`at`](Self::at).
+    pub fn span(&self) -> u32 {
+        u32::try_from((self.q_max - self.q_min) >> STEP_BITS).unwrap_or(u32::MAX)
+    }
+
+    /// Nearness at a point as [`at`](Self::at) finds it, before the clamp to the
+    /// vertices' range, in units of `2^-STEP_BITS`: the plane extended past them.
+    pub fn unclamped(&self, x: i64, y: i64) -> i64 {
         let centre = |k: i64| (2 * k + 1) << self.s;
         let (dx, dy) = (x - centre(self.i0), y - centre(self.j0));
         let shift = self.s + 1;
-        let q = match self
+        match self
             .dq_dx
             .checked_mul(dx)
             .zip(self.dq_dy.checked_mul(dy))
@@ -162,8 +174,7 @@ impl DepthPlane {
                 let q = i128::from(self.q_ref) + (n >> shift);
                 q.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64
             }
-        };
-        (q.clamp(self.q_min, self.q_max) >> STEP_BITS) as u32
+        }
     }
 
     /// The plane's nearness at a point, unclamped.

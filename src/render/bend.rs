@@ -1,0 +1,153 @@
+//! The hidden-line test's depth of a face that is not planar. CONVENTIONS.md gives
+//! such a face the depth of its fan triangle `(v0, vi, vi+1)` at the point; the line
+//! test holds one plane per face (the largest fan triangle's, [`DepthPlane::new`]).
+//! Within a fan triangle the difference between its plane and the face's is linear,
+//! so it is largest at a corner: over the whole face the fan depth stays within the
+//! largest corner difference, the face's [`Bend`], of the single plane. Only an edge
+//! point nearer to the plane than that asks for the depth of the fan triangle that
+//! holds it, evaluated there from the triangle's corners (a plane set up and kept
+//! would cost a hundred bytes of a small stack, for a question seldom asked).
+
+use super::lines::{margin, polygon_contains, EdgePixel};
+use super::transform::{ProjectedVertex, ScreenVertex};
+use super::zband::{DepthPlane, STEP_BITS};
+use super::zfan::fan_corners;
+use crate::mesh::Mesh;
+
+/// Nearness units added to a bend for the rounding of the fixed-point planes.
+const ROUNDING: u32 = 16;
+
+/// A face as the line test sees it: its index, its polygon on screen and single
+/// plane, and what its fan triangles are made of.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct FaceView<'a> {
+    pub mesh: &'a Mesh<'a>,
+    pub vertices: &'a [ProjectedVertex],
+    pub f: usize,
+    pub poly: &'a [ScreenVertex],
+    pub plane: &'a DepthPlane,
+}
+
+/// How far a face's fan triangles leave its single plane, found when first asked.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Bend {
+    /// The largest difference of nearness between a fan triangle's corner and the
+    /// face's plane there; 0 for a triangle, which has no other plane; `None` until
+    /// asked.
+    off: Option<u32>,
+}
+
+impl Bend {
+    /// No bend: the single plane decides.
+    pub const NONE: Self = Self { off: Some(0) };
+
+    /// The bend of a face of `corners` corners in the mesh: none for a triangle,
+    /// else found when first asked.
+    pub fn of(corners: usize) -> Self {
+        Self {
+            off: (corners <= 3).then_some(0),
+        }
+    }
+
+    /// True when `face` is nearer than the edge point of `px` by the margin of
+    /// `reach` ([`margin`]). Where the fan triangles' depth could decide otherwise
+    /// than the single plane, the nearest fan triangle holding (`x`, `y`) (half
+    /// sub-pixel units) decides; the single plane when none holds it.
+    #[inline]
+    pub fn nearer(
+        &mut self,
+        face: &FaceView<'_>,
+        px: &EdgePixel,
+        (x, y): (i64, i64),
+        reach: u64,
+    ) -> bool {
+        let q = face.plane.at(px.px, px.py);
+        let limit = px.q.saturating_add(margin(face.plane, px, reach));
+        // Both the plane (clamped) and the fan triangles stay within the vertices'
+        // range: most points are decided before the bend is asked.
+        let gap = q.abs_diff(limit);
+        if gap > face.plane.span().saturating_add(ROUNDING) {
+            return q > limit;
+        }
+        let off = self.off(face);
+        if off == 0 || gap > off.saturating_add(ROUNDING) {
+            return q > limit;
+        }
+        match fan_at(face, x, y, (px.px, px.py)) {
+            Some(fan) => fan > i64::from(limit),
+            None => q > limit,
+        }
+    }
+
+    /// The largest difference between a corner's nearness and the plane there.
+    /// The polygon's vertices hold every fan triangle's corners that are in view (a
+    /// fan triangle with a corner out of the view volume is never asked,
+    /// [`fan_corners`]), and points on its edges, which are fan triangles' edges: a
+    /// bound, if a loose one where clipped.
+    #[inline(never)]
+    fn off(&mut self, face: &FaceView<'_>) -> u32 {
+        *self.off.get_or_insert_with(|| {
+            // The plane unclamped: clamped to the vertices' range at a corner, it
+            // could meet the corner there and still leave the fan triangle between.
+            face.poly
+                .iter()
+                .map(|c| {
+                    let q = face.plane.unclamped(2 * i64::from(c.x), 2 * i64::from(c.y));
+                    let d = q.abs_diff(i64::from(c.q) << STEP_BITS) >> STEP_BITS;
+                    u32::try_from(d).unwrap_or(u32::MAX)
+                })
+                .max()
+                .unwrap_or(0)
+        })
+    }
+}
+
+/// Nearness at (`px`, `py`) of the face's nearest fan triangle among those whose
+/// projection holds (`x`, `y`) (several where the face folds on screen, or on the
+/// diagonal between two); `None` when none holds it. Half sub-pixel units.
+#[inline(never)]
+fn fan_at(face: &FaceView<'_>, x: i64, y: i64, (px, py): (i64, i64)) -> Option<i64> {
+    fan_corners(face.mesh, face.vertices, face.f)
+        .filter(|corners| polygon_contains(corners, x, y))
+        .filter_map(|corners| triangle_at(&corners, px, py))
+        .max()
+}
+
+/// Nearness at (`x`, `y`) (half sub-pixel units) of the plane through a triangle's
+/// corners, `None` when it has no area on screen.
+fn triangle_at(corners: &[ScreenVertex; 3], x: i64, y: i64) -> Option<i64> {
+    let p = |v: &ScreenVertex| (2 * i64::from(v.x), 2 * i64::from(v.y), i64::from(v.q));
+    let [(x0, y0, q0), (x1, y1, q1), (x2, y2, q2)] = corners.each_ref().map(p);
+    let (dx1, dy1, dq1) = (x1 - x0, y1 - y0, q1 - q0);
+    let (dx2, dy2, dq2) = (x2 - x0, y2 - y0, q2 - q0);
+    // As in `DepthPlane::new`: inside the guard band every product is below 2^60.
+    let cross = |a: i64, b: i64, c: i64, d: i64| a.wrapping_mul(b).wrapping_sub(c.wrapping_mul(d));
+    let den = cross(dx1, dy2, dx2, dy1);
+    if den == 0 {
+        return None;
+    }
+    let (a, b, dx, dy) = (
+        cross(dq1, dy2, dq2, dy1),
+        cross(dq2, dx1, dq1, dx2),
+        x - x0,
+        y - y0,
+    );
+    // 64-bit when it fits (most faces): a 128-bit divide is a long library call on
+    // a Cortex-M4, and its temporaries take stack.
+    match a
+        .checked_mul(dx)
+        .zip(b.checked_mul(dy))
+        .and_then(|(u, v)| u.checked_add(v))
+    {
+        Some(n) => q0.checked_add(n.checked_div(den)?),
+        None => wide_at(q0, (a, b, den), dx, dy),
+    }
+}
+
+/// [`triangle_at`] in 128 bits.
+#[cold]
+#[inline(never)]
+fn wide_at(q0: i64, (a, b, den): (i64, i64, i64), dx: i64, dy: i64) -> Option<i64> {
+    let n = i128::from(a) * i128::from(dx) + i128::from(b) * i128::from(dy);
+    i64::try_from(i128::from(q0) + n.checked_div(i128::from(den))?).ok()
+}
