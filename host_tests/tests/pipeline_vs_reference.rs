@@ -118,39 +118,18 @@ fn run_scene(
                 }
             }
             if let Err(e) = m.check() {
-                match known_deviation(&label, &m) {
-                    Some(why) => report.push(format!("  KNOWN DEVIATION: {e}: {why}")),
-                    None => failures.push(format!("{e} [camera {cam:?}]")),
-                }
+                failures.push(format!("{e} [camera {cam:?}]"));
             }
         }
     }
     (report, failures)
 }
 
-/// The measured deviation from the limits, kept visible and bounded rather
-/// than hidden.
-///
-/// Beetle at 400x240 misses 1.18% of the reference's hidden-edge
-/// length (limit 1%). Traced (13 px of 1099): all of it lies on four creases of
-/// face 1337, a sliver seen edge-on from behind, within two pixels of vertex 220
-/// where seven edges meet. The reference hides them all. The library hides edge
-/// (220, 230) at most of its pixels, but edge (220, 793) belongs to face 1342, the
-/// nearest face at those pixel centres, so it is drawn visible through its own face
-/// there (as it must be), and a visible pixel wins over the hidden one under it.
-/// A pixel-resolution line test cannot separate edges less than a pixel apart whose
-/// visibility differs. Only that metric, only that scene, and only up to 1.5% is
-/// tolerated; everything else must pass. Returns the explanation when `m` fails in
-/// exactly that known way.
-fn known_deviation(label: &str, m: &SceneMetrics) -> Option<&'static str> {
-    let l = m.lines.as_ref()?;
-    let only_hidden_length = m.surfaces.is_none()
-        && l.misclassified_fraction() <= 0.005
-        && l.visible_missing_fraction() <= 0.01
-        && l.hidden_missing_fraction() <= 0.015;
-    (label.starts_with("beetle 400x240 dash") && only_hidden_length)
-        .then_some("tolerated up to 1.5% (see known_deviation)")
-}
+// Beetle at 400x240 missed 1.18 % of the reference's hidden-edge length here (limit
+// 1 %), tolerated as a known deviation until 2026-11-22: creases of a sliver seen
+// edge-on, drawn visible because their own face was nearest at the pixel centres
+// although another face passed in front of the edge points half a pixel off. The line
+// test now asks the face beside after the edge's own face: 0.56 % to 0.60 %.
 
 fn finish(report: &[String], failures: &[String]) {
     for l in report {

@@ -30,7 +30,7 @@ use crate::{Error, FillRule, ScanConverter, ScreenPoint, SpanSink};
 /// pixel from its fan triangle `(v0, vi, vi+1)` that holds the pixel centre
 /// (CONVENTIONS.md) in the depth test; drawing one sets up its fan triangles on the
 /// stack, about 150 bytes for each of `POLY`. The hidden-line test, shared by every
-/// engine, still gives such a face one plane (its largest fan triangle's).
+/// engine, asks such a face's fan triangle where its single plane cannot decide.
 #[derive(Debug)]
 pub struct ZBufferRenderer<Frac: LeEqU32, const EDGES: usize, const POLY: usize> {
     scan: ScanConverter<EDGES>,
