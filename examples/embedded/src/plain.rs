@@ -1,5 +1,5 @@
 //! Baseline (ii): the paper's P-buffer algorithm written the plain way in `f32`, a
-//! `no_std` port of `host_tests/src/baseline.rs` (dashed mode only): a full-frame `f32`
+//! `no_std` port of `host_tests/src/baseline/` (dashed mode only): a full-frame `f32`
 //! depth buffer and a face-id buffer, faces rasterized as fan triangles with `f32` edge
 //! functions over their bounding box, feature edges drawn with an `f32` DDA, each pixel
 //! through the paper's test, the pattern looked up per pixel. The view-independent
