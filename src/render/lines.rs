@@ -364,8 +364,10 @@ impl<const POLY: usize> FaceCache<POLY> {
 /// Whether the edge point of `px` is hidden. The face nearest at the pixel centre
 /// decides, or, when it does not contain the edge point (up to half a pixel off the
 /// centre) or is one of the edge's own faces, the face nearest at the neighbouring
-/// centre on that side, if that one contains it. A face that contains the point hides it when nearer by a small
-/// margin; the centre's face extended to the point needs a wide one (see [`nearer`]).
+/// centre on that side, if that one contains it. A face that contains the point hides
+/// it when nearer by a small margin; the centre's face extended to the point needs a
+/// wide one (see [`nearer`]). A face that is not planar may answer by its fan
+/// triangle's depth ([`Bend::nearer`]).
 // Out of line: inlined, its three depth tests' temporaries took their own stack.
 #[inline(never)]
 fn hidden<const POLY: usize>(
