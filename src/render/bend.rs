@@ -10,7 +10,7 @@
 
 use super::lines::{margin, polygon_contains, EdgePixel};
 use super::transform::{ProjectedVertex, ScreenVertex};
-use super::zband::{DepthPlane, STEP_BITS};
+use super::zband::{exact_at, half_units, plane_through, DepthPlane, STEP_BITS};
 use super::zfan::fan_corners;
 use crate::mesh::Mesh;
 
@@ -115,39 +115,8 @@ fn fan_at(face: &FaceView<'_>, x: i64, y: i64, (px, py): (i64, i64)) -> Option<i
 
 /// Nearness at (`x`, `y`) (half sub-pixel units) of the plane through a triangle's
 /// corners, `None` when it has no area on screen.
-fn triangle_at(corners: &[ScreenVertex; 3], x: i64, y: i64) -> Option<i64> {
-    let p = |v: &ScreenVertex| (2 * i64::from(v.x), 2 * i64::from(v.y), i64::from(v.q));
-    let [(x0, y0, q0), (x1, y1, q1), (x2, y2, q2)] = corners.each_ref().map(p);
-    let (dx1, dy1, dq1) = (x1 - x0, y1 - y0, q1 - q0);
-    let (dx2, dy2, dq2) = (x2 - x0, y2 - y0, q2 - q0);
-    // As in `DepthPlane::new`: inside the guard band every product is below 2^60.
-    let cross = |a: i64, b: i64, c: i64, d: i64| a.wrapping_mul(b).wrapping_sub(c.wrapping_mul(d));
-    let den = cross(dx1, dy2, dx2, dy1);
-    if den == 0 {
-        return None;
-    }
-    let (a, b, dx, dy) = (
-        cross(dq1, dy2, dq2, dy1),
-        cross(dq2, dx1, dq1, dx2),
-        x - x0,
-        y - y0,
-    );
-    // 64-bit when it fits (most faces): a 128-bit divide is a long library call on
-    // a Cortex-M4, and its temporaries take stack.
-    match a
-        .checked_mul(dx)
-        .zip(b.checked_mul(dy))
-        .and_then(|(u, v)| u.checked_add(v))
-    {
-        Some(n) => q0.checked_add(n.checked_div(den)?),
-        None => wide_at(q0, (a, b, den), dx, dy),
-    }
-}
-
-/// [`triangle_at`] in 128 bits.
-#[cold]
-#[inline(never)]
-fn wide_at(q0: i64, (a, b, den): (i64, i64, i64), dx: i64, dy: i64) -> Option<i64> {
-    let n = i128::from(a) * i128::from(dx) + i128::from(b) * i128::from(dy);
-    i64::try_from(i128::from(q0) + n.checked_div(i128::from(den))?).ok()
+fn triangle_at([v0, v1, v2]: &[ScreenVertex; 3], x: i64, y: i64) -> Option<i64> {
+    let (x0, y0, q0) = half_units(v0);
+    let coefficients = plane_through(v0, v1, v2);
+    (coefficients.2 != 0).then(|| exact_at(q0, coefficients, x - x0, y - y0))
 }

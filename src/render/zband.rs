@@ -76,20 +76,11 @@ impl DepthPlane {
     /// when every fan triangle is degenerate (the face covers no pixel anyway).
     pub fn new(poly: &[ScreenVertex], s: u32) -> Option<Self> {
         let v0 = poly.first()?;
-        let p = |v: &ScreenVertex| (2 * i64::from(v.x), 2 * i64::from(v.y), i64::from(v.q));
-        let (x0, y0, q0) = p(v0);
-        // In 64 bits: inside the guard band coordinate differences are below 2^28
-        // half-units and nearness differences below 2^32, so every product is below
-        // 2^60 (wrapping ops only spare the overflow checks).
+        let (x0, y0, q0) = half_units(v0);
         let mut best: Option<(i64, Self)> = None;
         for pair in poly.get(1..)?.windows(2) {
             let [v1, v2] = pair else { continue };
-            let ((x1, y1, q1), (x2, y2, q2)) = (p(v1), p(v2));
-            let (dx1, dy1, dq1) = (x1 - x0, y1 - y0, q1 - q0);
-            let (dx2, dy2, dq2) = (x2 - x0, y2 - y0, q2 - q0);
-            let cross =
-                |a: i64, b: i64, c: i64, d: i64| a.wrapping_mul(b).wrapping_sub(c.wrapping_mul(d));
-            let den = cross(dx1, dy2, dx2, dy1);
+            let (a, b, den) = plane_through(v0, v1, v2);
             if den == 0 || best.is_some_and(|(area, _)| area >= den.abs()) {
                 continue;
             }
@@ -97,8 +88,8 @@ impl DepthPlane {
                 x0,
                 y0,
                 q0,
-                a: cross(dq1, dy2, dq2, dy1),
-                b: cross(dq2, dx1, dq1, dx2),
+                a,
+                b,
                 den,
                 s,
                 i0: 0,
@@ -179,19 +170,8 @@ impl DepthPlane {
 
     /// The plane's nearness at a point, unclamped.
     fn plane_at(&self, x: i64, y: i64) -> i64 {
-        let (dx, dy) = (x - self.x0, y - self.y0);
-        // 64-bit when it fits, as in `new`.
-        if let Some(n) = self
-            .a
-            .checked_mul(dx)
-            .zip(self.b.checked_mul(dy))
-            .and_then(|(u, v)| u.checked_add(v))
-        {
-            return self.q0 + n.checked_div_euclid(self.den).unwrap_or(0);
-        }
-        let n = i128::from(self.a) * i128::from(dx) + i128::from(self.b) * i128::from(dy);
-        let q = i128::from(self.q0) + n.checked_div_euclid(i128::from(self.den)).unwrap_or(0);
-        q.clamp(-(1 << 40), 1 << 40) as i64
+        let coefficients = (self.a, self.b, self.den);
+        exact_at(self.q0, coefficients, x - self.x0, y - self.y0)
     }
 
     /// Depth difference within which this face and an earlier one tie (the earlier,
@@ -218,6 +198,57 @@ impl DepthPlane {
             .saturating_add(self.dq_dx.saturating_mul(di))
             .saturating_add(self.dq_dy.saturating_mul(dj))
     }
+}
+
+/// A vertex in half sub-pixel units, with its nearness: `(x, y, q)`.
+pub(crate) fn half_units(v: &ScreenVertex) -> (i64, i64, i64) {
+    (2 * i64::from(v.x), 2 * i64::from(v.y), i64::from(v.q))
+}
+
+/// The plane through three vertices as `(a, b, den)` of
+/// `q(X, Y) = q0 + (a (X - x0) + b (Y - y0)) / den`, where `(x0, y0, q0)` is
+/// [`half_units`] of `v0`; `den` (twice the signed area) is 0 when they have no area.
+pub(crate) fn plane_through(
+    v0: &ScreenVertex,
+    v1: &ScreenVertex,
+    v2: &ScreenVertex,
+) -> (i64, i64, i64) {
+    let [(x0, y0, q0), (x1, y1, q1), (x2, y2, q2)] = [v0, v1, v2].map(half_units);
+    let (dx1, dy1, dq1) = (x1 - x0, y1 - y0, q1 - q0);
+    let (dx2, dy2, dq2) = (x2 - x0, y2 - y0, q2 - q0);
+    // In 64 bits: inside the guard band coordinate differences are below 2^28
+    // half-units and nearness differences below 2^32, so every product is below
+    // 2^60 (wrapping ops only spare the overflow checks).
+    let cross = |a: i64, b: i64, c: i64, d: i64| a.wrapping_mul(b).wrapping_sub(c.wrapping_mul(d));
+    (
+        cross(dq1, dy2, dq2, dy1),
+        cross(dq2, dx1, dq1, dx2),
+        cross(dx1, dy2, dx2, dy1),
+    )
+}
+
+/// `q0 + (a dx + b dy) / den` (rounded down), the plane of [`plane_through`] at an
+/// offset from its first vertex; `q0` when `den` is 0.
+pub(crate) fn exact_at(q0: i64, (a, b, den): (i64, i64, i64), dx: i64, dy: i64) -> i64 {
+    // 64-bit when it fits (most faces): a 128-bit divide is a long library call on a
+    // Cortex-M4, and its temporaries take stack.
+    match a
+        .checked_mul(dx)
+        .zip(b.checked_mul(dy))
+        .and_then(|(u, v)| u.checked_add(v))
+    {
+        Some(n) => q0 + n.checked_div_euclid(den).unwrap_or(0),
+        None => wide_at(q0, (a, b, den), dx, dy),
+    }
+}
+
+/// [`exact_at`] in 128 bits, clamped to +-2^40.
+#[cold]
+#[inline(never)]
+fn wide_at(q0: i64, (a, b, den): (i64, i64, i64), dx: i64, dy: i64) -> i64 {
+    let n = i128::from(a) * i128::from(dx) + i128::from(b) * i128::from(dy);
+    let q = i128::from(q0) + n.checked_div_euclid(i128::from(den)).unwrap_or(0);
+    q.clamp(-(1 << 40), 1 << 40) as i64
 }
 
 /// One face's nearness along one row, `q(x) = row_q + dq_dx x`, moved down a row by
