@@ -29,28 +29,41 @@
 use std::path::PathBuf;
 
 use host_tests::frame::{CameraSpec, EngineSpec, MeshData, ModeSpec, ProjectionSpec, RenderSpec};
-use host_tests::metrics::{compare, SurfaceMetrics};
+use host_tests::metrics::{compare, SceneMetrics, SurfaceMetrics};
 use host_tests::pipeline::render_frame;
 use host_tests::random::Rng;
 use host_tests::reference3d::reference_frame;
 use host_tests::shapes::bounds;
 
-/// Surface counts of `engine` against the reference: holes, wrong faces, depth-order
-/// errors, far differences, and the reference's covered pixels.
-fn counts(mesh: &MeshData, cam: &CameraSpec, w: usize, h: usize, engine: EngineSpec) -> [usize; 5] {
+/// `engine`'s frame in `mode` (one full-frame band, S = 4, 32-bit depth) against the
+/// reference's: surface metrics in a surfaces mode, line metrics otherwise.
+fn measure(
+    mesh: &MeshData,
+    cam: &CameraSpec,
+    (width, height): (usize, usize),
+    engine: EngineSpec,
+    mode: ModeSpec,
+) -> SceneMetrics {
     let spec = RenderSpec {
-        width: w,
-        height: h,
-        band: h,
+        width,
+        height,
+        band: height,
         subpixel: 4,
         depth_bits: 32,
         engine,
-        mode: ModeSpec::Surfaces,
+        mode,
         ..RenderSpec::default()
     };
     let rf = reference_frame(mesh, cam, &spec).expect("reference");
     let frame = render_frame(mesh, cam, &spec).expect("library");
-    let m = compare(engine.name(), &frame, &rf, true, false);
+    let surfaces = mode == ModeSpec::Surfaces;
+    compare(engine.name(), &frame, &rf, surfaces, !surfaces)
+}
+
+/// Surface counts of `engine` against the reference: holes, wrong faces, depth-order
+/// errors, far differences, and the reference's covered pixels.
+fn counts(mesh: &MeshData, cam: &CameraSpec, w: usize, h: usize, engine: EngineSpec) -> [usize; 5] {
+    let m = measure(mesh, cam, (w, h), engine, ModeSpec::Surfaces);
     let s: SurfaceMetrics = m.surfaces.expect("surface metrics");
     [
         s.holes,
@@ -328,21 +341,8 @@ fn line_counts(
     h: usize,
     engine: EngineSpec,
 ) -> [f64; 6] {
-    let spec = RenderSpec {
-        width: w,
-        height: h,
-        band: h,
-        subpixel: 4,
-        depth_bits: 32,
-        engine,
-        mode: ModeSpec::Dashed,
-        ..RenderSpec::default()
-    };
-    let rf = reference_frame(mesh, cam, &spec).expect("reference");
-    let frame = render_frame(mesh, cam, &spec).expect("library");
-    let l = compare(engine.name(), &frame, &rf, false, true)
-        .lines
-        .expect("line metrics");
+    let m = measure(mesh, cam, (w, h), engine, ModeSpec::Dashed);
+    let l = m.lines.expect("line metrics");
     [
         l.misclassified as f64,
         l.line_pixels as f64,
