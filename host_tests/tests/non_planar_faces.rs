@@ -91,14 +91,30 @@ fn orbit(cam0: &CameraSpec, k: usize) -> CameraSpec {
     }
 }
 
-#[test]
-fn suzanne_from_sixteen_sides_matches_the_reference_in_a_bsp_order() {
+/// `../shared/models/suzanne.obj`, `None` (with a note) where it is not found.
+fn suzanne() -> Option<MeshData> {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shared/models/suzanne.obj");
     if !path.is_file() {
         println!("note: {} not found; skipped", path.display());
-        return;
+        return None;
     }
-    let mesh = host_tests::obj::load_obj(&path).expect("suzanne loads");
+    Some(host_tests::obj::load_obj(&path).expect("suzanne loads"))
+}
+
+/// The 32 views of `mesh` the suzanne tests take: 16 sides ([`orbit`]) at 400x240 and
+/// at 128x64, each size with its fitted camera.
+fn views(mesh: &MeshData) -> impl Iterator<Item = (usize, usize, usize, CameraSpec)> + '_ {
+    [(400, 240), (128, 64)].into_iter().flat_map(move |(w, h)| {
+        let cam0 = host_tests::fit::fit_camera(mesh, w, h);
+        (0..16).map(move |k| (w, h, k, orbit(&cam0, k)))
+    })
+}
+
+#[test]
+fn suzanne_from_sixteen_sides_matches_the_reference_in_a_bsp_order() {
+    let Some(mesh) = suzanne() else {
+        return;
+    };
     let engines = [
         EngineSpec::CodeFill,
         EngineSpec::CodeFillCrossings,
@@ -106,18 +122,14 @@ fn suzanne_from_sixteen_sides_matches_the_reference_in_a_bsp_order() {
         EngineSpec::ZBuffer,
     ];
     let mut total = [[0usize; 5]; 4];
-    for (w, h) in [(400, 240), (128, 64)] {
-        let cam0 = host_tests::fit::fit_camera(&mesh, w, h);
-        for k in 0..16 {
-            let cam = orbit(&cam0, k);
-            for (e, &engine) in engines.iter().enumerate() {
-                let c = counts(&mesh, &cam, w, h, engine);
-                if c[..4].iter().any(|&n| n > 0) {
-                    println!("{w}x{h} view {k} {}: {c:?}", engine.name());
-                }
-                for (t, n) in total[e].iter_mut().zip(c) {
-                    *t += n;
-                }
+    for (w, h, k, cam) in views(&mesh) {
+        for (e, &engine) in engines.iter().enumerate() {
+            let c = counts(&mesh, &cam, w, h, engine);
+            if c[..4].iter().any(|&n| n > 0) {
+                println!("{w}x{h} view {k} {}: {c:?}", engine.name());
+            }
+            for (t, n) in total[e].iter_mut().zip(c) {
+                *t += n;
             }
         }
     }
@@ -424,27 +436,20 @@ fn random_twisted_quads_hide_lines_behind_their_fan_triangles() {
 
 #[test]
 fn suzanne_from_sixteen_sides_hides_lines_behind_fan_triangles() {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shared/models/suzanne.obj");
-    if !path.is_file() {
-        println!("note: {} not found; skipped", path.display());
+    let Some(mesh) = suzanne() else {
         return;
-    }
-    let mesh = host_tests::obj::load_obj(&path).expect("suzanne loads");
+    };
     let engines = [
         EngineSpec::CodeFill,
         EngineSpec::Scanline,
         EngineSpec::ZBuffer,
     ];
     let mut total = [[0f64; 6]; 3];
-    for (w, h) in [(400, 240), (128, 64)] {
-        let cam0 = host_tests::fit::fit_camera(&mesh, w, h);
-        for k in 0..16 {
-            let cam = orbit(&cam0, k);
-            for (e, &engine) in engines.iter().enumerate() {
-                let c = line_counts(&mesh, &cam, w, h, engine);
-                for (t, n) in total[e].iter_mut().zip(c) {
-                    *t += n;
-                }
+    for (w, h, _, cam) in views(&mesh) {
+        for (e, &engine) in engines.iter().enumerate() {
+            let c = line_counts(&mesh, &cam, w, h, engine);
+            for (t, n) in total[e].iter_mut().zip(c) {
+                *t += n;
             }
         }
     }
