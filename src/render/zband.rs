@@ -227,8 +227,8 @@ pub(crate) fn plane_through(
     )
 }
 
-/// `q0 + (a dx + b dy) / den` (rounded down), the plane of [`plane_through`] at an
-/// offset from its first vertex; `q0` when `den` is 0.
+/// `q0 + (a dx + b dy) / den` (Euclidean division), the plane of [`plane_through`]
+/// at an offset from its first vertex; `q0` when `den` is 0.
 pub(crate) fn exact_at(q0: i64, (a, b, den): (i64, i64, i64), dx: i64, dy: i64) -> i64 {
     // 64-bit when it fits (most faces): a 128-bit divide is a long library call on a
     // Cortex-M4, and its temporaries take stack.
