@@ -15,7 +15,7 @@ use super::zfan::fan_corners;
 use crate::mesh::Mesh;
 
 /// Nearness units added to a bend for the rounding of the fixed-point planes.
-const ROUNDING: u32 = 16;
+pub(crate) const ROUNDING: u32 = 16;
 
 /// A face as the line test sees it: its index, its polygon on screen and single
 /// plane, and what its fan triangles are made of.
@@ -86,20 +86,22 @@ impl Bend {
     /// bound, if a loose one where clipped.
     #[inline(never)]
     fn off(&mut self, face: &FaceView<'_>) -> u32 {
-        *self.off.get_or_insert_with(|| {
-            // The plane unclamped: clamped to the vertices' range at a corner, it
-            // could meet the corner there and still leave the fan triangle between.
-            face.poly
-                .iter()
-                .map(|c| {
-                    let q = face.plane.unclamped(2 * i64::from(c.x), 2 * i64::from(c.y));
-                    let d = q.abs_diff(i64::from(c.q) << STEP_BITS) >> STEP_BITS;
-                    u32::try_from(d).unwrap_or(u32::MAX)
-                })
-                .max()
-                .unwrap_or(0)
-        })
+        *self.off.get_or_insert_with(|| bend(face.poly, face.plane))
     }
+}
+
+/// The largest difference of nearness between a corner of `poly` and `plane` there
+/// (the plane unclamped: clamped to the vertices' range at a corner, it could meet
+/// the corner there and still leave the fan triangle between).
+pub(crate) fn bend(poly: &[ScreenVertex], plane: &DepthPlane) -> u32 {
+    poly.iter()
+        .map(|c| {
+            let q = plane.unclamped(2 * i64::from(c.x), 2 * i64::from(c.y));
+            let d = q.abs_diff(i64::from(c.q) << STEP_BITS) >> STEP_BITS;
+            u32::try_from(d).unwrap_or(u32::MAX)
+        })
+        .max()
+        .unwrap_or(0)
 }
 
 /// Nearness at (`px`, `py`) of the face's nearest fan triangle among those whose

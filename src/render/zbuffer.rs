@@ -265,7 +265,7 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
             // A face clipped to three corners keeps its single plane: it was a
             // triangle, or (one clipping plane) it kept one corner, so that every fan
             // triangle has a corner cut away (see `zfan`).
-            if poly.len() > 3 && takes_fan_depth(ctx.mesh, f) {
+            if takes_fan_depth(ctx.mesh, f, &poly, &plane) {
                 spans += self.fan_face(ctx, vertices, f, &points, &plane, band)?;
                 continue;
             }

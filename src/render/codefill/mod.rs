@@ -170,6 +170,9 @@ struct ActiveFace {
     /// `coverage::folded`): its fragments can overlap on screen, and the face covers
     /// a pixel only where an odd number of them do.
     fold: bool,
+    /// Planes: how far its fan triangles may leave `plane` ([`bend`](super::bend::bend)),
+    /// 0 for a planar face (see `resolve_overlap`).
+    bend: u32,
     /// The row after its last.
     end: i32,
     plane: RowPlane,
@@ -235,6 +238,7 @@ const NO_FACE: ActiveFace = ActiveFace {
     pos: NO_BIT,
     rank: 0,
     fold: false,
+    bend: 0,
     end: 0,
     plane: RowPlane::ZERO,
 };

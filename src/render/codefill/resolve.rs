@@ -3,7 +3,12 @@
 
 use fixed::types::extra::LeEqU32;
 
-use super::{ActiveFace, CodeFillRenderer, NO_FACE};
+use super::{ActiveFace, CodeFillRenderer, Surfaces, NO_FACE};
+use crate::mesh::Mesh;
+use crate::render::bend::ROUNDING;
+use crate::render::transform::ProjectedVertex;
+use crate::render::zfan::{fan_depth_at, FanPlanes};
+use crate::render::FrameCtx;
 
 impl<
         Frac: LeEqU32,
@@ -26,7 +31,7 @@ impl<
 
     /// Writes the ids of pixels `xa .. xb` of the current row from the code;
     /// returns the runs written.
-    pub(super) fn resolve(&self, xa: u16, xb: u16, out: &mut [u16]) -> u32 {
+    pub(super) fn resolve(&self, row: &RowFaces<'_>, xa: u16, xb: u16, out: &mut [u16]) -> u32 {
         let Some(run) = out.get_mut(usize::from(xa)..usize::from(xb)) else {
             return 0;
         };
@@ -52,7 +57,7 @@ impl<
                 run.fill(self.nearest_covering());
                 1
             }
-            _ => self.resolve_overlap(xa, xb, out),
+            _ => self.resolve_overlap(row, xa, xb, out),
         }
     }
 
@@ -97,16 +102,26 @@ impl<
     /// faces are taken in index order, as the Z-buffer receives them: a later face
     /// wins when nearer by more than a tie. The winner at the run's start holds
     /// until the winner changes, found by bisection (two planes along a row cross
-    /// at most once).
-    // Indexing: n < 8 = by_id.len() before an insertion (checked), and i <= n.
+    /// at most once). A face that is not planar ([`ActiveFace::bend`]) takes the
+    /// depth of its fan triangle at the pixel where its plane, off by up to its
+    /// bend, could decide otherwise.
+    // Indexing: n < 8 = by_id.len() before an insertion (checked), and i <= n; k < n.
     #[allow(clippy::indexing_slicing)]
-    pub(super) fn resolve_overlap(&self, xa: u16, xb: u16, out: &mut [u16]) -> u32 {
+    pub(super) fn resolve_overlap(
+        &self,
+        row: &RowFaces<'_>,
+        xa: u16,
+        xb: u16,
+        out: &mut [u16],
+    ) -> u32 {
         // The covering faces in index order (insertion: a few faces), as slots of
         // the face table.
         let mut by_id = [(0u16, 0u16); 8];
         let mut n = 0;
         let mut fits = true;
+        let mut bent = false;
         self.each_covering(|slot, face| {
+            bent |= face.bend > 0;
             if n == by_id.len() {
                 fits = false;
                 return;
@@ -120,19 +135,54 @@ impl<
             n += 1;
         });
         let faces = &self.faces;
-        let winner = |x: u16| -> u16 {
+        let mut planes = FanPlanes::EMPTY;
+        // Nearness and tie margin of `face` at pixel `x`: its fan triangle's where
+        // `exact` and it has one there, else its plane's.
+        let mut depth = |face: &ActiveFace, x: u16, exact: bool| {
+            let fan = (exact && face.bend > 0)
+                .then(|| row.fan_depth(usize::from(face.id - 1), x, &mut planes))
+                .flatten();
+            fan.unwrap_or((face.plane.at(x), face.plane.tie))
+        };
+        let mut winner = |x: u16| -> u16 {
             let (mut best, mut q, mut after) = (0u16, 0u32, 0u16);
-            let mut take = |face: &ActiveFace| {
-                let qf = face.plane.at(x);
-                if best == 0 || qf > q.saturating_add(face.plane.tie) {
-                    (best, q) = (face.id, qf);
+            let mut take = |id: u16, (qf, tie): (u32, u32)| {
+                if best == 0 || qf > q.saturating_add(tie) {
+                    (best, q) = (id, qf);
                 }
             };
-            if fits {
-                for &(_, slot) in by_id.iter().take(n) {
+            if fits && !bent {
+                for &(id, slot) in by_id.iter().take(n) {
                     if let Some(face) = faces.get(usize::from(slot)) {
-                        take(face);
+                        take(id, (face.plane.at(x), face.plane.tie));
                     }
+                }
+                return best;
+            }
+            if fits && !bent {
+                for &(id, slot) in by_id.iter().take(n) {
+                    if let Some(face) = faces.get(usize::from(slot)) {
+                        take(id, (face.plane.at(x), face.plane.tie));
+                    }
+                }
+                return best;
+            }
+            if fits {
+                let face = |k: usize| faces.get(usize::from(by_id[k].1)).unwrap_or(&NO_FACE);
+                let mut at = [(0u32, 0u32); 8];
+                for (k, slot) in at.iter_mut().enumerate().take(n) {
+                    *slot = depth(face(k), x, false);
+                }
+                // A fan triangle is within its face's bend of the plane (plus the
+                // rounding): where every gap to a bent face is wider than both bends
+                // and the tie, the planes decide as the fan triangles would.
+                if !planes_decide(&at[..n], |k| face(k).bend) {
+                    for (k, slot) in at.iter_mut().enumerate().take(n) {
+                        *slot = depth(face(k), x, true);
+                    }
+                }
+                for (k, &d) in at.iter().enumerate().take(n) {
+                    take(by_id[k].0, d);
                 }
                 return best;
             }
@@ -146,7 +196,7 @@ impl<
                 });
                 let Some(face) = next else { return best };
                 after = face.id;
-                take(face);
+                take(face.id, depth(face, x, true));
             }
         };
         let mut runs = 0;
@@ -189,5 +239,49 @@ impl<
                 f(slot, self.faces.get(usize::from(slot)).unwrap_or(&NO_FACE));
             }
         }
+    }
+}
+
+/// Whether the planes' depths `at` (nearness, tie margin) decide as any depths within
+/// `bend(k)` of them would: every gap between two faces, one of them bent, is wider
+/// than their bends, the larger tie and the rounding.
+fn planes_decide(at: &[(u32, u32)], bend: impl Fn(usize) -> u32) -> bool {
+    at.iter().enumerate().all(|(i, &(qi, ti))| {
+        at.iter().enumerate().skip(i + 1).all(|(j, &(qj, tj))| {
+            let bends = bend(i).saturating_add(bend(j));
+            bends == 0
+                || qi.abs_diff(qj) > bends.saturating_add(ti.max(tj)).saturating_add(ROUNDING)
+        })
+    })
+}
+
+/// What `resolve_overlap` needs to find a fan triangle's depth on the current row.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct RowFaces<'a> {
+    pub mesh: &'a Mesh<'a>,
+    pub vertices: &'a [ProjectedVertex],
+    pub s: u32,
+    pub y: u16,
+}
+
+impl<'a> RowFaces<'a> {
+    /// Row `y` of the surfaces `fill`, whose vertices are `vertices`.
+    pub fn new(
+        ctx: &FrameCtx<'_, '_>,
+        fill: &Surfaces<'a>,
+        vertices: &'a [ProjectedVertex],
+        y: u16,
+    ) -> Self {
+        Self {
+            mesh: fill.mesh,
+            vertices,
+            s: ctx.s,
+            y,
+        }
+    }
+
+    /// See [`fan_depth_at`].
+    fn fan_depth(&self, f: usize, x: u16, planes: &mut FanPlanes) -> Option<(u32, u32)> {
+        fan_depth_at(self.mesh, self.vertices, f, self.s, (x, self.y), planes)
     }
 }

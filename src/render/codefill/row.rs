@@ -5,11 +5,14 @@ use heapless::Vec;
 
 use fixed::types::extra::LeEqU32;
 
+use super::resolve::RowFaces;
 use super::{ActiveFace, CodeFillRenderer, Surfaces, FOLD_MEMO, NO_BIT, OVER};
 use crate::render::active::ActiveEdge;
+use crate::render::bend::bend;
 use crate::render::coverage::{fragments_may_overlap, has_area};
 use crate::render::transform::{ProjectedVertex, ScreenVertex};
 use crate::render::zband::{DepthPlane, RowPlane};
+use crate::render::zfan::takes_fan_depth;
 use crate::render::{index_polygon, FrameCtx};
 use crate::scan::edge::{Edge, EdgeLine};
 use crate::scan::RowRange;
@@ -35,6 +38,7 @@ impl<
         out: &mut [u16],
     ) -> Result<u32, Error> {
         self.enter_row(ctx, fill, vertices, order, y)?;
+        let faces = RowFaces::new(ctx, fill, vertices, y);
         // (Bit-sliced rows give every live face its place themselves.)
         if self.priority {
             self.assign_priority_bits();
@@ -55,7 +59,7 @@ impl<
             let live = |e: &ActiveEdge| e.edge.first <= row;
             if (k..end).any(|j| self.edges.get(j).is_some_and(live)) {
                 if x != xa {
-                    runs += self.resolve(xa, x, out);
+                    runs += self.resolve(&faces, xa, x, out);
                     xa = x;
                 }
                 // Faces leaving first, so that one entering at the same place can
@@ -101,7 +105,7 @@ impl<
             k = end.max(k + 1);
         }
         if xa < width {
-            runs += self.resolve(xa, width, out);
+            runs += self.resolve(&faces, xa, width, out);
         }
         self.step_row();
         Ok(runs)
@@ -264,76 +268,102 @@ impl<
             if !index_polygon(ctx, vertices, fill.mesh.face(f), &mut poly)? {
                 continue;
             }
-            // A depth order compares no depths: a plane only where planes decide.
-            let plane = if self.priority {
+            let mut face = ActiveFace {
+                id: (fill.source(f) + 1) as u16,
+                bit: NO_BIT,
+                pos: NO_BIT,
+                rank: fill.rank(f),
+                fold: false,
+                bend: 0,
+                end: 0,
+                plane: RowPlane::ZERO,
+            };
+            if self.priority {
+                // A depth order compares no depths: no plane.
                 if !has_area(&poly) {
                     continue;
                 }
-                RowPlane::ZERO
+                face.fold = self.fold_of(ctx, fill.source(f), vertices);
             } else {
-                match DepthPlane::new(&poly, ctx.s) {
-                    Some(plane) => plane.row_plane(y),
-                    None => continue,
-                }
-            };
-            let Some(&slot) = self.free.last() else {
-                return Err(Error::CapacityExceeded {
-                    needed: self.live.len() + 1,
-                    capacity: FACES,
-                });
-            };
-            let rows = RowRange {
-                first: i32::from(y),
-                end: i32::from(ctx.viewport.height),
-            };
-            let half = |v: &ScreenVertex| (2 * i64::from(v.x), 2 * i64::from(v.y));
-            let mut end = i32::from(y);
-            let mut added = 0;
-            for (a, b) in poly.iter().zip(poly.iter().cycle().skip(1)) {
-                let Some(line) = EdgeLine::new(half(a), half(b)) else {
+                let Some(plane) = DepthPlane::new(&poly, ctx.s) else {
                     continue;
                 };
-                let Some(edge) = Edge::new(&line, line.clip(ctx.s, ctx.viewport, rows), ctx.s)
-                else {
-                    continue;
-                };
-                end = end.max(edge.end);
-                let width = ctx.viewport.width;
-                if self.edges.insert(edge, slot, ctx.s, width).is_err() {
-                    return Err(Error::CapacityExceeded {
-                        needed: self.edges.len() + poly.len() - added,
-                        capacity: EDGES,
-                    });
+                face.plane = plane.row_plane(y);
+                // A face that is not planar takes its depth from the fan triangle
+                // that holds the pixel (CONVENTIONS.md): `resolve_overlap` asks it
+                // where the plane's bend could change the answer. Clipped, the
+                // corners left bound nothing: it is always asked.
+                if takes_fan_depth(fill.mesh, f, &poly, &plane) {
+                    let corners = fill.mesh.face(f);
+                    let seen = |v: &u32| vertices.get(*v as usize).is_some_and(|p| p.outside == 0);
+                    face.bend = if corners.iter().all(seen) {
+                        bend(&poly, &plane)
+                    } else {
+                        u32::MAX
+                    };
                 }
-                added += 1;
             }
-            if added == 0 {
+            self.add_surface(ctx, &poly, y, face)?;
+        }
+        Ok(())
+    }
+
+    /// Activates `face`, whose polygon is `poly` and first row `y`: its edges join
+    /// the active edges; nothing when none crosses a pixel centre's row.
+    fn add_surface(
+        &mut self,
+        ctx: &FrameCtx<'_, '_>,
+        poly: &[ScreenVertex],
+        y: u16,
+        mut face: ActiveFace,
+    ) -> Result<(), Error> {
+        let Some(&slot) = self.free.last() else {
+            return Err(Error::CapacityExceeded {
+                needed: self.live.len() + 1,
+                capacity: FACES,
+            });
+        };
+        let rows = RowRange {
+            first: i32::from(y),
+            end: i32::from(ctx.viewport.height),
+        };
+        let half = |v: &ScreenVertex| (2 * i64::from(v.x), 2 * i64::from(v.y));
+        let mut end = i32::from(y);
+        let mut added = 0;
+        for (a, b) in poly.iter().zip(poly.iter().cycle().skip(1)) {
+            let Some(line) = EdgeLine::new(half(a), half(b)) else {
                 continue;
+            };
+            let Some(edge) = Edge::new(&line, line.clip(ctx.s, ctx.viewport, rows), ctx.s) else {
+                continue;
+            };
+            end = end.max(edge.end);
+            let width = ctx.viewport.width;
+            if self.edges.insert(edge, slot, ctx.s, width).is_err() {
+                return Err(Error::CapacityExceeded {
+                    needed: self.edges.len() + poly.len() - added,
+                    capacity: EDGES,
+                });
             }
-            let rank = fill.rank(f);
-            let source = fill.source(f);
-            let fold = self.priority && self.fold_of(ctx, source, vertices);
-            if let Some(face) = self.faces.get_mut(usize::from(slot)) {
-                *face = ActiveFace {
-                    id: (source + 1) as u16,
-                    bit: NO_BIT,
-                    pos: NO_BIT,
-                    rank,
-                    fold,
-                    end,
-                    plane,
-                };
-            }
-            self.free.pop();
-            if self.priority {
-                let faces = &self.faces;
-                let at = self
-                    .live
-                    .partition_point(|&s| faces.get(usize::from(s)).map_or(0, |f| f.rank) < rank);
-                let _ = self.live.insert(at, slot);
-            } else {
-                let _ = self.live.push(slot);
-            }
+            added += 1;
+        }
+        if added == 0 {
+            return Ok(());
+        }
+        face.end = end;
+        let rank = face.rank;
+        if let Some(held) = self.faces.get_mut(usize::from(slot)) {
+            *held = face;
+        }
+        self.free.pop();
+        if self.priority {
+            let faces = &self.faces;
+            let at = self
+                .live
+                .partition_point(|&s| faces.get(usize::from(s)).map_or(0, |f| f.rank) < rank);
+            let _ = self.live.insert(at, slot);
+        } else {
+            let _ = self.live.push(slot);
         }
         Ok(())
     }

@@ -9,6 +9,7 @@
 
 use fixed::types::extra::LeEqU32;
 
+use super::resolve::RowFaces;
 use super::{CodeFillRenderer, Surfaces};
 use crate::render::transform::ProjectedVertex;
 use crate::render::FrameCtx;
@@ -36,6 +37,7 @@ impl<
         codes: &mut [u32],
     ) -> Result<u32, Error> {
         self.enter_row(ctx, fill, vertices, order, y)?;
+        let faces = RowFaces::new(ctx, fill, vertices, y);
         // The code is as wide as the faces active on the row.
         self.widest = self.widest.max(self.live.len());
         let width = out.len();
@@ -100,7 +102,7 @@ impl<
                     continue;
                 }
                 if x > xa {
-                    runs += self.resolve(xa as u16, x as u16, out);
+                    runs += self.resolve(&faces, xa as u16, x as u16, out);
                     xa = x;
                 }
                 // `resolve` tells only none, one and more apart (the code cannot
@@ -122,7 +124,7 @@ impl<
             }
         }
         if xa < width {
-            runs += self.resolve(xa as u16, width as u16, out);
+            runs += self.resolve(&faces, xa as u16, width as u16, out);
         }
         self.step_row();
         Ok(runs)
