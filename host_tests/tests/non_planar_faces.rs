@@ -20,9 +20,10 @@
 //! to bounds here too.
 //!
 //! The scan-line method (`scanline`) compared one plane per face where faces
-//! overlap, wrong in the same way. A face whose single plane leaves a fan triangle by
-//! more than the rounding is now, wholly in view, a surface per fan triangle, each
-//! with its plane, their parity its coverage.
+//! overlap, wrong in the same way (the same 2,151 + 3,547). Where a face's plane
+//! leaves its fan triangles by more than a pixel's change of depth (`zfan::
+//! takes_fan_depth`, shared with the Z-buffer), it now asks the fan triangle that
+//! holds the pixel wherever the plane, off by that much, could pick another face.
 //!
 //! The hidden-line test, shared by every engine, gave such a face one plane too, and
 //! trusted the edge's own face at the pixel centre even where that face, seen
@@ -163,9 +164,10 @@ fn suzanne_from_sixteen_sides_matches_the_reference_in_a_bsp_order() {
     assert_eq!([bsp[0], bsp[1], bsp[3]], [0, 0, 0]);
     assert!(bsp[2] <= 20, "bsp depth-order errors: {}", bsp[2]);
     // The Z-buffer, each pixel's depth from the fan triangle holding it, and the
-    // scan-line method, each fan triangle a surface of its own: measured 1
-    // depth-order error, 0 far differences for each (with one plane per face: 1 and
-    // 4 for each).
+    // scan-line method, the fan triangle asked where the plane cannot decide:
+    // measured 2 and 1 depth-order errors, 0 far differences (with one plane per
+    // face: 1 and 4 for each; with fan depth for every bend above the rounding: 1
+    // and 0 for each).
     for (engine, t) in engines.iter().zip(total).skip(3) {
         assert_eq!(t[..2], [0, 0], "{} holes, wrong faces", engine.name());
         assert!(
@@ -333,11 +335,12 @@ fn random_twisted_quads_in_a_bsp_order_are_as_faithful_as_the_z_buffer() {
     // wrong face, 3 holes (snapping), and depth-order errors and far differences
     // only along the lines where two quads cross, where fixed-point planes through
     // snapped vertices and the tie margin move the crossing by a fraction of a pixel:
-    // measured 2 + 157 of 378,765, against 4 + 171 on the same scenes with every quad
-    // made planar (its fourth corner put back in the plane of the other three). With
-    // one plane per face (its largest fan triangle's) it was 2,151 + 3,547. The
-    // scan-line method, each fan triangle of such a face a surface of its own with
-    // its plane, measured the same (it too had 2,151 + 3,547 with one plane).
+    // measured 1 + 171 of 378,765 (2 + 157 with fan depth for every bend above the
+    // rounding, not only above a pixel's change of depth), against 4 + 171 on the same
+    // scenes with every quad made planar (its fourth corner put back in the plane of
+    // the other three). With one plane per face (its largest fan triangle's) it was
+    // 2,151 + 3,547. The scan-line method, asking the fan triangle where the plane
+    // cannot decide, measured 1 + 173 (it too had 2,151 + 3,547 with one plane).
     for (engine, t) in engines.iter().zip(total).skip(2) {
         assert_eq!(t[1], 0, "{} wrong faces", engine.name());
         assert!(t[0] <= 3, "{} holes {}", engine.name(), t[0]);
@@ -442,9 +445,8 @@ fn random_twisted_quads_hide_lines_behind_their_fan_triangles() {
     // visible and 204.2 px hidden length missing. With fan depth where the plane
     // cannot decide, and the face beside asked after the own face: 4, 2.7, 2.5 (the
     // same scenes with every quad made planar: 6, 1.7, 3.2 before either change).
-    // The scan-line method measured the same once its fill gave each fan triangle
-    // its plane (with one plane per face it read ids off where quads cross: 19,
-    // 2.2, 32.4).
+    // The scan-line method measured the same once its fill asked the fan triangles
+    // (with one plane per face it read ids off where quads cross: 19, 2.2, 32.4).
     for (engine, t) in engines.iter().zip(total) {
         assert!(t[1] > 100_000.0 && t[5] > 40_000.0, "the scenes draw lines");
         assert_line_totals(*engine, &t, [12.0, 8.0, 8.0]);

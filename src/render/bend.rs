@@ -117,7 +117,7 @@ fn fan_at(face: &FaceView<'_>, x: i64, y: i64, (px, py): (i64, i64)) -> Option<i
 
 /// Nearness at (`x`, `y`) (half sub-pixel units) of the plane through a triangle's
 /// corners, `None` when it has no area on screen.
-fn triangle_at([v0, v1, v2]: &[ScreenVertex; 3], x: i64, y: i64) -> Option<i64> {
+pub(crate) fn triangle_at([v0, v1, v2]: &[ScreenVertex; 3], x: i64, y: i64) -> Option<i64> {
     let (x0, y0, q0) = half_units(v0);
     let coefficients = plane_through(v0, v1, v2);
     (coefficients.2 != 0).then(|| exact_at(q0, coefficients, x - x0, y - y0))

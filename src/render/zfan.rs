@@ -17,7 +17,7 @@ use core::convert::Infallible;
 use embedded_graphics_core::pixelcolor::BinaryColor;
 use heapless::Vec;
 
-use super::bend::{bend, ROUNDING};
+use super::bend::{bend, triangle_at, ROUNDING};
 use super::lines::polygon_contains;
 use super::transform::{ProjectedVertex, ScreenVertex};
 use super::zband::{Depth, DepthPlane, RowPlane, ZBand};
@@ -32,10 +32,11 @@ use crate::{Span, SpanSink, Viewport, GUARD_BAND_PX};
 /// the plane leaves some corner ([`bend`]) by more than the rounding and more than the
 /// plane's change of depth over one pixel. A smaller bend is left to the plane, a
 /// trade measured in `host_tests/tests/non_planar_faces.rs`: on the twisted quads
-/// 1 + 171 depth-order and far pixels of 378,765 against 2 + 157 with fan depth above
-/// the rounding only, on suzanne 2 + 0 against 1 + 0, and the Z-buffer draws
-/// suzanne in 13 % fewer instructions. The (f64) planarity test is asked only of a
-/// face that bends so, and never of a triangle.
+/// 1 + 171 depth-order and far pixels of 378,765 against 2 + 157 with fan depth for
+/// every face not planar, on suzanne 2 + 0 against 1 + 0, and the Z-buffer draws
+/// suzanne in 13 % fewer instructions. The (f64) planarity test, asked last, keeps a
+/// planar face whose snapped vertices bend it (coarse sub-pixel precision) on its
+/// plane, as every engine that has one plane per face draws it.
 pub(crate) fn takes_fan_depth(
     mesh: &Mesh<'_>,
     f: usize,
@@ -176,76 +177,39 @@ pub(crate) fn fan_rows<const POLY: usize>(
     kept + 2 == mesh.face(f).len()
 }
 
-/// Planes of fan triangles along one row, by face and triangle: the last few set up,
-/// reused while the pixels of one run are asked.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct FanPlanes {
-    /// `(1 + face, triangle, plane)`; face 0 for an empty entry.
-    held: [(u16, u16, RowPlane); 4],
-    next: usize,
-}
-
-impl FanPlanes {
-    /// None held.
-    pub const EMPTY: Self = Self {
-        held: [(0, 0, RowPlane::ZERO); 4],
-        next: 0,
-    };
-
-    /// Fan triangle `k` = `corners` of face `f`, along row `y`.
-    fn plane(
-        &mut self,
-        f: usize,
-        k: usize,
-        corners: &[ScreenVertex; 3],
-        s: u32,
-        y: u16,
-    ) -> Option<RowPlane> {
-        let key = ((f + 1) as u16, k as u16);
-        if let Some(&(_, _, plane)) = self.held.iter().find(|h| (h.0, h.1) == key) {
-            return Some(plane);
-        }
-        let plane = DepthPlane::new(corners, s)?.row_plane(y);
-        if let Some(slot) = self.held.get_mut(self.next) {
-            *slot = (key.0, key.1, plane);
-        }
-        self.next = (self.next + 1) % self.held.len();
-        Some(plane)
-    }
-}
-
-/// Nearness and tie margin at the centre of pixel (`x`, `y`) of face `f`, not
-/// planar, as the Z-buffer gives it (see [`FanSpans`]): from the nearest of its fan
-/// triangles (those [`fan_rows`] keeps) that holds the centre; `None` when none does
-/// (the face's single plane decides then). A centre exactly on a fan triangle's edge
-/// counts for it here (on the diagonal both triangles, whose planes meet there, are
-/// asked). `planes` holds the planes of row `y` set up so far.
+/// Nearness at the centre of pixel (`x`, `y`) of face `f`, not planar: that of the
+/// nearest of its fan triangles (those [`fan_rows`] keeps) that holds the centre,
+/// evaluated there from the triangle's corners; `None` when none does (the face's
+/// single plane decides then). A centre exactly on a fan triangle's edge counts for
+/// it here (on the diagonal both triangles, whose planes meet there, are asked). For
+/// the few pixels where the single plane cannot decide.
+#[inline(never)]
 pub(crate) fn fan_depth_at(
     mesh: &Mesh<'_>,
     vertices: &[ProjectedVertex],
     f: usize,
     s: u32,
     (x, y): (u16, u16),
-    planes: &mut FanPlanes,
-) -> Option<(u32, u32)> {
+) -> Option<u32> {
     let limit = i64::from(GUARD_BAND_PX) << s;
     let inside = |v: &ScreenVertex| i64::from(v.x).abs() <= limit && i64::from(v.y).abs() <= limit;
     let centre = |k: u16| (2 * i64::from(k) + 1) << s;
     let (cx, cy) = (centre(x), centre(y));
-    let mut best: Option<(u32, u32)> = None;
-    for (k, corners) in fan_corners(mesh, vertices, f).enumerate() {
-        if !corners.iter().all(inside) || !polygon_contains(&corners, cx, cy) {
-            continue;
-        }
-        let Some(plane) = planes.plane(f, k, &corners, s, y) else {
-            continue;
-        };
-        let q = plane.at(x);
-        if best.is_none_or(|(b, _)| q > b) {
-            best = Some((q, plane.tie));
-        }
-    }
-    best
+    fan_corners(mesh, vertices, f)
+        .filter(|corners| corners.iter().all(inside) && polygon_contains(corners, cx, cy))
+        .filter_map(|corners| clamped_at(&corners, cx, cy))
+        .max()
+}
+
+/// Nearness of the triangle's plane at (`x`, `y`) (half sub-pixel units, a point
+/// inside it), clamped to its corners' range (which holds it but for the rounding);
+/// `None` when it has no area on screen.
+fn clamped_at(corners: &[ScreenVertex; 3], x: i64, y: i64) -> Option<u32> {
+    let q = triangle_at(corners, x, y)?;
+    let (lo, hi) = corners
+        .iter()
+        .fold((u32::MAX, 0), |(lo, hi), v| (lo.min(v.q), hi.max(v.q)));
+    Some(q.clamp(i64::from(lo), i64::from(hi)) as u32)
 }
 
 /// A span sink that depth-tests the spans of one face that is not planar into a

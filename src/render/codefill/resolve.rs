@@ -7,7 +7,7 @@ use super::{ActiveFace, CodeFillRenderer, Surfaces, NO_FACE};
 use crate::mesh::Mesh;
 use crate::render::bend::ROUNDING;
 use crate::render::transform::ProjectedVertex;
-use crate::render::zfan::{fan_depth_at, FanPlanes};
+use crate::render::zfan::fan_depth_at;
 use crate::render::FrameCtx;
 
 impl<
@@ -103,8 +103,8 @@ impl<
     /// wins when nearer by more than a tie. The winner at the run's start holds
     /// until the winner changes, found by bisection (two planes along a row cross
     /// at most once). A face that is not planar ([`ActiveFace::bend`]) takes the
-    /// depth of its fan triangle at the pixel where its plane, off by up to its
-    /// bend, could decide otherwise.
+    /// depth of its fan triangle at the pixel (with its plane's tie margin) where its
+    /// plane, off by up to its bend, could decide otherwise.
     // Indexing: n < 8 = by_id.len() before an insertion (checked), and i <= n; k < n.
     #[allow(clippy::indexing_slicing)]
     pub(super) fn resolve_overlap(
@@ -135,30 +135,21 @@ impl<
             n += 1;
         });
         let faces = &self.faces;
-        let mut planes = FanPlanes::EMPTY;
-        // Nearness and tie margin of `face` at pixel `x`: its fan triangle's where
-        // `exact` and it has one there, else its plane's.
-        let mut depth = |face: &ActiveFace, x: u16, exact: bool| {
+        // Nearness and tie margin of `face` at pixel `x`: its fan triangle's nearness
+        // where `exact` and it has one there, else its plane's.
+        let depth = |face: &ActiveFace, x: u16, exact: bool| {
             let fan = (exact && face.bend > 0)
-                .then(|| row.fan_depth(usize::from(face.id - 1), x, &mut planes))
+                .then(|| row.fan_depth(usize::from(face.id - 1), x))
                 .flatten();
-            fan.unwrap_or((face.plane.at(x), face.plane.tie))
+            (fan.unwrap_or_else(|| face.plane.at(x)), face.plane.tie)
         };
-        let mut winner = |x: u16| -> u16 {
+        let winner = |x: u16| -> u16 {
             let (mut best, mut q, mut after) = (0u16, 0u32, 0u16);
             let mut take = |id: u16, (qf, tie): (u32, u32)| {
                 if best == 0 || qf > q.saturating_add(tie) {
                     (best, q) = (id, qf);
                 }
             };
-            if fits && !bent {
-                for &(id, slot) in by_id.iter().take(n) {
-                    if let Some(face) = faces.get(usize::from(slot)) {
-                        take(id, (face.plane.at(x), face.plane.tie));
-                    }
-                }
-                return best;
-            }
             if fits && !bent {
                 for &(id, slot) in by_id.iter().take(n) {
                     if let Some(face) = faces.get(usize::from(slot)) {
@@ -281,7 +272,7 @@ impl<'a> RowFaces<'a> {
     }
 
     /// See [`fan_depth_at`].
-    fn fan_depth(&self, f: usize, x: u16, planes: &mut FanPlanes) -> Option<(u32, u32)> {
-        fan_depth_at(self.mesh, self.vertices, f, self.s, (x, self.y), planes)
+    fn fan_depth(&self, f: usize, x: u16) -> Option<u32> {
+        fan_depth_at(self.mesh, self.vertices, f, self.s, (x, self.y))
     }
 }
