@@ -43,9 +43,15 @@ pub(crate) fn takes_fan_depth(
     poly: &[ScreenVertex],
     plane: &DepthPlane,
 ) -> bool {
-    poly.len() > 3
-        && bend(poly, plane) > ROUNDING.max(plane.change_per_pixel())
-        && !is_planar(mesh, f)
+    mesh.face(f).len() > 3 && poly.len() > 3 && bends(poly, plane) && !is_planar(mesh, f)
+}
+
+/// Whether `plane` leaves a corner of `poly` by more than the rounding and its change of
+/// depth over one pixel (out of line: asked of quads only, kept out of the loops that
+/// draw triangles).
+#[inline(never)]
+fn bends(poly: &[ScreenVertex], plane: &DepthPlane) -> bool {
+    bend(poly, plane) > ROUNDING.max(plane.change_per_pixel())
 }
 
 /// The fan triangles `(v0, vk, vk+1)` of face `f` on screen, those with every corner
