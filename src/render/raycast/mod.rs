@@ -4,10 +4,17 @@
 //! After projection the ray through a pixel centre is the line of constant screen
 //! (x, y), along which nearness `q` is affine: the ray meets a face where the face
 //! covers the centre ([`covers_centre`], the scan converter's decision) and at the
-//! face's plane nearness there, the very value the Z-buffer stores. The cast is
-//! exact in fixed point, and it decides each pixel exactly as the Z-buffer does
-//! (32-bit depth): of the covering faces taken in index order, a later face wins
-//! only when nearer by more than its tie.
+//! face's plane nearness there, the very value the Z-buffer stores; a face that is
+//! not planar ([`takes_fan_depth`]) at the nearness of its fan triangle that holds
+//! the centre ([`fan_depth_at`], as the scan-line method asks it; CONVENTIONS.md).
+//! The cast is exact in fixed point, and it decides each pixel as the Z-buffer
+//! does (32-bit depth): of the covering faces taken in index order, a later face
+//! wins only when nearer by more than its tie. (A fan triangle's depth is evaluated
+//! from its corners here and from its plane in the Z-buffer: the two can round
+//! apart where two faces cross.) The pruning bound, a face's largest corner
+//! nearness, holds its fan triangles too.
+//!
+//! [`fan_depth_at`]: super::zfan::fan_depth_at
 //!
 //! [`covers_centre`]: super::coverage::covers_centre
 //!
@@ -43,6 +50,7 @@ use super::compose::{FrameProbe, Palette};
 use super::idpass::{render_ids, FrameInput, IdPass, IdWorkspace};
 use super::transform::{ProjectedVertex, ScreenVertex};
 use super::zband::{DepthPlane, IdBand, RowPlane};
+use super::zfan::takes_fan_depth;
 use super::{bit, face_polygon, need, FrameCtx, Settings, Stats};
 use crate::camera::Camera;
 use crate::geometry::Subpixel;
@@ -99,6 +107,9 @@ pub struct RayFace {
     y1: u16,
     face: u16,
     clipped: bool,
+    /// Not planar: its depth is its fan triangle's at each centre
+    /// ([`takes_fan_depth`](super::zfan::takes_fan_depth)).
+    bent: bool,
 }
 
 impl RayFace {
@@ -287,6 +298,7 @@ impl<const POLY: usize> IdPass for Cast<'_, POLY> {
                 y1,
                 face: f as u16,
                 clipped,
+                bent: takes_fan_depth(ctx.mesh, f, &poly, &plane),
             };
             n += 1;
             self.figures.clipped_faces += u32::from(clipped);

@@ -8,6 +8,7 @@ use heapless::Vec;
 use super::{Cast, TILE_FACES};
 use crate::render::coverage::covers_centre;
 use crate::render::transform::{ProjectedVertex, ScreenVertex};
+use crate::render::zfan::fan_depth_at;
 use crate::render::{face_polygon, FrameCtx};
 use crate::Error;
 
@@ -148,7 +149,11 @@ impl<const POLY: usize> Cast<'_, POLY> {
         Ok(Some(Hit {
             face: rf.face,
             entry: k as u32,
-            q: rf.plane.at_xy(x, y),
+            q: rf
+                .bent
+                .then(|| fan_depth_at(ctx.mesh, vertices, f, ctx.s, (x, y)))
+                .flatten()
+                .unwrap_or_else(|| rf.plane.at_xy(x, y)),
             tie: rf.plane.tie,
         }))
     }

@@ -26,7 +26,11 @@
 //!   come from the corner centres, where an affine depth, clamped, has its extremes;
 //! - one pixel: the candidates covering its centre are compared in increasing face
 //!   index, a later one winning only when nearer by more than its tie, exactly the
-//!   Z-buffer's rule, so the frame is the Z-buffer's (32-bit depth) pixel for pixel;
+//!   Z-buffer's rule, so the frame is the Z-buffer's (32-bit depth) pixel for pixel
+//!   (a face that is not planar takes the depth of its fan triangle that holds the
+//!   centre, evaluated from the triangle's corners, and its depth bounds over an
+//!   area widen by how far its plane leaves its corners; where two faces cross,
+//!   that evaluation can round apart from the Z-buffer's fan planes);
 //! - else: the area is split at its middle in x and y (only along a side longer than
 //!   one pixel) and the parts are pushed.
 //!
@@ -49,11 +53,13 @@ use embedded_graphics_core::pixelcolor::PixelColor;
 use fixed::types::extra::LeEqU32;
 use heapless::Vec;
 
+use super::bend::{bend, ROUNDING};
 use super::compose::{FrameProbe, Palette};
 use super::coverage::covers_centre;
 use super::idpass::{render_ids, FrameInput, IdPass, IdWorkspace};
 use super::transform::{ProjectedVertex, ScreenVertex};
 use super::zband::{DepthPlane, IdBand};
+use super::zfan::{fan_depth_at, takes_fan_depth};
 use super::{bit, face_polygon, need, FrameCtx, Settings, Stats};
 use crate::camera::Camera;
 use crate::geometry::Subpixel;
@@ -67,6 +73,10 @@ use geom::{convex_orientation, outside_an_edge, PixelBox, Rect};
 pub struct WarnockFace {
     plane: DepthPlane,
     tie: u32,
+    /// How far the face's fan triangles may leave its plane: 0 for a planar face;
+    /// for one that is not ([`takes_fan_depth`]), its [`bend`] and the rounding,
+    /// `u32::MAX` when clipped (its corners then bound nothing).
+    bend: u32,
     /// The mesh face (0-based; a mesh has at most 65 535 faces).
     face: u16,
     /// +1 or -1 for a convex polygon, 0 otherwise.
@@ -228,6 +238,20 @@ impl<const POLY: usize> IdPass for Subdivide<'_, POLY> {
             let Some(plane) = DepthPlane::new(&poly, ctx.s) else {
                 continue;
             };
+            // A face that is not planar takes its fan triangle's depth at a pixel
+            // (CONVENTIONS.md): an area's depth bounds widen by its bend.
+            let bend = if !takes_fan_depth(ctx.mesh, f, &poly, &plane) {
+                0
+            } else if ctx
+                .mesh
+                .face(f)
+                .iter()
+                .all(|&v| vertices.get(v as usize).is_some_and(|p| p.outside == 0))
+            {
+                bend(&poly, &plane).saturating_add(ROUNDING)
+            } else {
+                u32::MAX
+            };
             let mut small = [ScreenVertex::default(); 4];
             let small_len = if poly.len() <= small.len() {
                 for (to, from) in small.iter_mut().zip(poly.iter()) {
@@ -243,6 +267,7 @@ impl<const POLY: usize> IdPass for Subdivide<'_, POLY> {
                     small_len,
                     plane,
                     tie: plane.tie(),
+                    bend,
                     // Below MAX_FACES = 65 535.
                     face: f as u16,
                     sense: convex_orientation::<POLY>(&poly),
@@ -448,10 +473,11 @@ impl<'a, const POLY: usize> Areas<'a, '_, '_, POLY> {
         corners: &[(i64, i64); 4],
     ) -> Result<bool, Error> {
         let range = |face: &WarnockFace| {
-            corners.iter().fold((u32::MAX, 0), |(lo, hi), &(x, y)| {
+            let (lo, hi) = corners.iter().fold((u32::MAX, 0), |(lo, hi), &(x, y)| {
                 let q = face.plane.at(x, y);
                 (lo.min(q), hi.max(q))
-            })
+            });
+            (lo.saturating_sub(face.bend), hi.saturating_add(face.bend))
         };
         match list {
             [] => return Ok(true),
@@ -512,7 +538,18 @@ impl<'a, const POLY: usize> Areas<'a, '_, '_, POLY> {
             if !self.polygon(face)? || !covers_centre(&self.poly, self.ctx.s, i, j) {
                 continue;
             }
-            let q = face.plane.at(x, y);
+            let q = (face.bend > 0)
+                .then(|| {
+                    fan_depth_at(
+                        self.ctx.mesh,
+                        self.vertices,
+                        usize::from(face.face),
+                        self.ctx.s,
+                        (rect.x0, rect.y0),
+                    )
+                })
+                .flatten()
+                .unwrap_or_else(|| face.plane.at(x, y));
             if best.is_none_or(|(_, near)| q > near.saturating_add(face.tie)) {
                 best = Some((face.face, q));
             }
