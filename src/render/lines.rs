@@ -366,7 +366,7 @@ impl<const POLY: usize> FaceCache<POLY> {
 /// centre) or is one of the edge's own faces, the face nearest at the neighbouring
 /// centre on that side, if that one contains it. A face that contains the point hides
 /// it when nearer by a small margin; the centre's face extended to the point needs a
-/// wide one (see [`nearer`]). A face that is not planar may answer by its fan
+/// wide one (see [`margin`]). A face that is not planar may answer by its fan
 /// triangle's depth ([`Bend::nearer`]).
 // Out of line: inlined, its three depth tests' temporaries took their own stack.
 #[inline(never)]
@@ -478,15 +478,9 @@ fn view<'a>(
     }
 }
 
-/// True when `plane` is strictly nearer than the edge point, beyond the uncertainty
-/// of sampling at pixel centres: the rounding of fixed-point depth, plus `reach`
-/// sixteenths of the plane's depth change over one pixel. This also keeps an edge
-/// that lies in another face's plane visible: equal depth does not hide.
-pub(crate) fn nearer(plane: &DepthPlane, px: &EdgePixel, reach: u64) -> bool {
-    plane.at(px.px, px.py) > px.q.saturating_add(margin(plane, px, reach))
-}
-
-/// The margin of [`nearer`]: the rounding of the edge point's nearness plus `reach`
+/// The margin of [`Bend::nearer`] (a face strictly nearer than the edge point by
+/// more than the uncertainty of sampling at pixel centres; equal depth does not
+/// hide): the rounding of the edge point's nearness plus `reach`
 /// sixteenths of the plane's change over one pixel.
 pub(crate) fn margin(plane: &DepthPlane, px: &EdgePixel, reach: u64) -> u32 {
     let slope = (u64::from(plane.change_per_pixel()) * reach) >> 4;

@@ -6,10 +6,12 @@
 use fixed::types::extra::LeEqU32;
 use heapless::Vec;
 
+use super::bend::{Bend, FaceView};
 use super::coverage::covers_centre;
-use super::lines::{edge_on_screen, nearer, polygon_contains, walk_segment, REACH_COVERING};
+use super::lines::{edge_on_screen, polygon_contains, walk_segment, REACH_COVERING};
 use super::transform::{ProjectedVertex, ScreenVertex};
 use super::zband::DepthPlane;
+use super::zfan::{fan_depth_at, takes_fan_depth};
 use super::{begin_frame, bit, face_polygon, need, Settings, Stats};
 use crate::camera::Camera;
 use crate::geometry::Subpixel;
@@ -102,7 +104,11 @@ pub fn pick<Frac: LeEqU32, const POLY: usize>(
         let Some(plane) = DepthPlane::new(&poly, s) else {
             continue;
         };
-        let q = plane.at(centre(x), centre(y));
+        // A face that is not planar: its fan triangle's depth, as the engines take it.
+        let q = takes_fan_depth(mesh, f, &poly, &plane)
+            .then(|| fan_depth_at(mesh, vertices, f, s, (x, y)))
+            .flatten()
+            .unwrap_or_else(|| plane.at(centre(x), centre(y)));
         if best.is_none_or(|(_, b)| q > b.saturating_add(plane.tie())) {
             best = Some((f as u16, q));
         }
@@ -138,7 +144,20 @@ pub fn pick<Frac: LeEqU32, const POLY: usize>(
                 if !polygon_contains(&poly, px.px, px.py) {
                     continue;
                 }
-                if DepthPlane::new(&poly, s).is_some_and(|p| nearer(&p, &px, REACH_COVERING)) {
+                let Some(plane) = DepthPlane::new(&poly, s) else {
+                    continue;
+                };
+                // As the line pass asks it (the fan triangle's depth where the
+                // face's bend could change the answer).
+                let face = FaceView {
+                    mesh,
+                    vertices,
+                    f,
+                    poly: &poly,
+                    plane: &plane,
+                };
+                let at = (px.px, px.py);
+                if Bend::of(mesh.face(f).len()).nearer(&face, &px, at, REACH_COVERING) {
                     in_front = in_front.saturating_add(1);
                 }
             }

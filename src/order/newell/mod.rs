@@ -20,12 +20,14 @@
 //! Coplanar polygons whose projections overlap go by face index: the lower one is
 //! painted last (ranks nearer, CONVENTIONS.md).
 //!
-//! Sides of a plane (tests 4 and 5, and whether a plane cuts a polygon) are decided
-//! with the BSP build's tolerance and, for a face that is not planar, its own
-//! thickness: a vertex within the largest distance of the face's corners from its
-//! Newell plane counts as on the plane (the face is known no better than that). On
-//! suzanne this cuts the splits per view from 860 to about 140. A cycle that no such
-//! plane cuts is cut by P's or Q's plane without the band.
+//! A convex face that is not planar enters the sort as its fan triangles, each a
+//! plane (as in the BSP build; CONVENTIONS.md gives such a face the depth of the
+//! fan triangle a ray meets). Sides of a plane (tests 4 and 5, and whether a plane
+//! cuts a polygon) are decided with the BSP build's tolerance and, for a face that
+//! is not planar and not convex (one plane for the whole face), its own thickness:
+//! a vertex within the largest distance of the face's corners from its Newell plane
+//! counts as on the plane (the face is known no better than that). A cycle that no
+//! such plane cuts is cut by P's or Q's plane without the band.
 //!
 //! The result has the same shape as a [`BspTree`](super::BspTree)'s: fragments that
 //! begin with the mesh's vertices bit for bit (split points follow), their source
@@ -89,9 +91,10 @@ pub struct NewellStorage<'s> {
     /// Scratch: each slot's screen box and depth range,
     /// `[x_min, x_max, y_min, y_max, depth_min, depth_max]`.
     pub boxes: &'s mut [[f32; 6]],
-    /// Scratch: the list and the marks (one word each per slot: the first half of
-    /// the slice is the list, the second the marks), then the split points sorted
-    /// for the seams in the first half: `2 * max(slots, split points)` words.
+    /// Scratch: the list, the marks and the surfaces (one word each per slot: the
+    /// first third of the slice is the list, the second the marks, the last each
+    /// slot's face or fan triangle), then the split points sorted for the seams in
+    /// the first third: `3 * max(slots, split points)` words.
     pub work: &'s mut [u32],
 }
 
@@ -139,21 +142,28 @@ impl NewellSizes {
     ///
     /// They suffice when every split cuts a convex fragment in two (2 split points,
     /// 2 slots) and no fragment has more than 8 vertices: true for triangle and quad
-    /// meshes unless one fragment is cut by more than 4 planes. A sort that needs more
-    /// fails with [`Error::CapacityExceeded`]; [`NewellOrder::splits`] of a trial
-    /// sort tells what a view needs.
+    /// meshes unless one fragment is cut by more than 4 planes. They allow for every
+    /// face of more than three corners being taken as its fan triangles (a face of
+    /// `n` corners that is not planar: `n - 2` slots of 3 indices). A sort that needs
+    /// more fails with [`Error::CapacityExceeded`]; [`NewellOrder::splits`] of a
+    /// trial sort tells what a view needs.
     pub const fn for_mesh(vertices: usize, faces: usize, indices: usize, splits: usize) -> Self {
-        let slots = faces.saturating_add(splits.saturating_mul(2));
+        // Fan triangles: n - 3 more slots and 2 n - 6 more indices for a face of n.
+        let fanned = indices.saturating_sub(faces.saturating_mul(3));
+        let slots = faces
+            .saturating_add(fanned)
+            .saturating_add(splits.saturating_mul(2));
         let points = splits.saturating_mul(2);
         // Each split appends two pieces of at most 8 + 2 vertices; then the seams
         // insert each split point into at most two more edges.
         let index_words = indices
+            .saturating_add(fanned.saturating_mul(2))
             .saturating_add(splits.saturating_mul(20))
             .saturating_add(points.saturating_mul(2));
         let work = if slots > points {
-            slots.saturating_mul(2)
+            slots.saturating_mul(3)
         } else {
-            points.saturating_mul(2)
+            points.saturating_mul(3)
         };
         Self {
             vertices: vertices.saturating_add(points),
@@ -232,9 +242,13 @@ impl<'s> NewellOrder<'s> {
     /// ([`Cull::Auto`](crate::render::Cull::Auto) is `edges.is_closed()`). Faces left
     /// out, and faces of zero area, rank after all the others (by face index).
     ///
-    /// Every face, planar or not, is taken as its Newell plane through its centroid
-    /// (as in the BSP build): where a face that is not planar bulges through another,
-    /// the order can be wrong there.
+    /// A convex face that is not planar is taken as its fan triangles `(v0, vk,
+    /// vk+1)`, each in its own plane, as the BSP build takes it (CONVENTIONS.md gives
+    /// such a face the depth of the fan triangle a ray meets); its fragments are
+    /// never ordered against each other (they overlap only where the face folds on
+    /// screen, which the renderer covers by the polygon's parity). Every other face
+    /// is its Newell plane through its centroid (a face that is not planar and not
+    /// convex with its thickness band, below).
     ///
     /// A marked polygon that may go first but was moved ahead before in this round
     /// (the tests are conservative, so that need not be a cycle) is moved again when

@@ -3,14 +3,17 @@
 //! separating-axis test of the projections, and whether a plane cuts a fragment.
 
 use super::sort::Sorter;
-use crate::order::plane::{vertex, Plane, Side};
+use crate::order::plane::{vertex, Plane, Record, Side};
 
 impl Sorter<'_, '_, '_> {
-    /// The plane of fragment `f`'s face and the face's own thickness about it: the
-    /// largest distance of its vertices (0 for a planar face, in the units of
-    /// [`Plane::distance`]).
+    /// The plane of fragment `f`'s surface and the face's own thickness about it:
+    /// the largest distance of its vertices (0 for a planar face or a fan triangle,
+    /// in the units of [`Plane::distance`]).
     pub(super) fn banded(&self, f: usize) -> (Plane, f64) {
         let plane = self.plane(f);
+        if Record::fan(self.surface(f)) != 0 {
+            return (plane, 0.0);
+        }
         let corners = self.mesh.face(self.face(f));
         let band = corners.iter().fold(0.0f64, |b, &i| {
             b.max(plane.distance(vertex(self.mesh.vertices(), i)).abs())
@@ -53,7 +56,8 @@ impl Sorter<'_, '_, '_> {
         }
         let (fp, fq) = (self.face(p), self.face(q));
         if fp == fq {
-            // Pieces of one face do not overlap.
+            // Pieces of one face do not overlap (fan triangles do where the face
+            // folds on screen, and the renderer covers that by the polygon's parity).
             return false;
         }
         let (plane_p, plane_q) = (self.banded(p), self.banded(q));

@@ -148,7 +148,7 @@ impl Sorter<'_, '_, '_> {
         let len = self.len;
         if len >= self.list.len() {
             return Err(Self::err(
-                len.saturating_add(1).saturating_mul(2),
+                len.saturating_add(1).saturating_mul(3),
                 self.work_words,
             ));
         }

@@ -10,7 +10,7 @@ use crate::camera::Camera;
 use crate::mesh::{Mesh, MAX_FACES};
 use crate::order::bsp::PLANE_TOLERANCE;
 use crate::order::build::need;
-use crate::order::plane::{vertex, Plane};
+use crate::order::plane::{fans, vertex, Plane, Record};
 use crate::order::seams::{insert_seam_vertices, Seams};
 use crate::sort::sort_by_key;
 use crate::Error;
@@ -43,6 +43,9 @@ pub(super) struct Sorter<'a, 'b, 'm> {
     pub(super) len: usize,
     /// Per slot: [`DEAD`], or the generation in which it was moved ahead (marked).
     pub(super) marks: &'a mut [u32],
+    /// Per slot: the surface it lies on, a [`Record`] word (its face, and its fan
+    /// triangle when the face is not planar).
+    surfaces: &'a mut [u32],
     /// Slots made so far.
     pub(super) slots: usize,
     /// Twice the words of `list` (for errors about `work`).
@@ -76,8 +79,9 @@ pub(super) fn run<'s>(
         work,
     } = storage;
     let work_words = work.len();
-    let half = work_words / 2;
-    let (list, marks) = work.split_at_mut(half);
+    let third = work_words / 3;
+    let (list, rest) = work.split_at_mut(third);
+    let (marks, surfaces) = rest.split_at_mut(third);
     let mut s = Sorter {
         mesh,
         view: View::new(camera),
@@ -94,6 +98,7 @@ pub(super) fn run<'s>(
         list,
         len: 0,
         marks,
+        surfaces,
         slots: 0,
         work_words,
         generation: 1,
@@ -139,12 +144,19 @@ impl<'a> Sorter<'a, '_, '_> {
         self.boxes.get(f).copied().unwrap_or([0.0; 6])
     }
 
-    pub(super) fn plane(&self, f: usize) -> Plane {
-        Plane::of_record(self.mesh, self.face(f) as u32, self.tolerance_sq)
+    /// The [`Record`] word of slot `f`'s surface.
+    pub(super) fn surface(&self, f: usize) -> u32 {
+        self.surfaces.get(f).copied().unwrap_or(self.face(f) as u32)
     }
 
-    /// Copies the mesh (its vertices and faces become slots `0..faces`) and lists
-    /// the faces drawn in the view, farthest first.
+    /// The plane of slot `f`'s surface: its face's, or its fan triangle's.
+    pub(super) fn plane(&self, f: usize) -> Plane {
+        Plane::of_record(self.mesh, self.surface(f), self.tolerance_sq)
+    }
+
+    /// Copies the mesh (its vertices, and its faces as slots: a face that is not
+    /// planar as its fan triangles, as the BSP build takes it) and lists the slots
+    /// drawn in the view, farthest first.
     fn start(&mut self, cull: bool) -> Result<(), Error> {
         let mesh = self.mesh;
         let from = mesh.vertices();
@@ -161,18 +173,30 @@ impl<'a> Sorter<'a, '_, '_> {
             .first_mut()
             .ok_or(Self::err(faces.saturating_add(1), capacity))? = 0;
         for f in 0..faces {
-            for &i in mesh.face(f) {
-                self.put(i)?;
-            }
+            let corners = mesh.face(f);
             // Face ids are below MAX_FACES < 2^16.
-            self.new_slot(f as u16)?;
+            if fans(mesh, f, self.tolerance_sq) {
+                let v0 = corners.first().copied().unwrap_or(0);
+                for (k, pair) in corners.get(1..).unwrap_or(&[]).windows(2).enumerate() {
+                    self.put(v0)?;
+                    for &i in pair {
+                        self.put(i)?;
+                    }
+                    self.new_slot(f as u16, Record::of_fan(f, k + 1))?;
+                }
+            } else {
+                for &i in corners {
+                    self.put(i)?;
+                }
+                self.new_slot(f as u16, f as u32)?;
+            }
         }
         let viewpoint = self.view.viewpoint;
-        for f in 0..faces {
-            let drawn = !cull || mesh.faces_viewpoint(f, &viewpoint);
+        for f in 0..self.slots {
+            let drawn = !cull || mesh.faces_viewpoint(self.face(f), &viewpoint);
             if drawn && !self.plane(f).is_degenerate() {
                 let slot = self.list.get_mut(self.len).ok_or(Self::err(
-                    self.len.saturating_add(1).saturating_mul(2),
+                    self.len.saturating_add(1).saturating_mul(3),
                     self.work_words,
                 ))?;
                 *slot = f as u32;
@@ -188,8 +212,9 @@ impl<'a> Sorter<'a, '_, '_> {
     }
 
     /// Takes the next slot for the fragment just written (`offsets[slots]` to the
-    /// index count), with source face `face`: its box, no mark.
-    pub(super) fn new_slot(&mut self, face: u16) -> Result<usize, Error> {
+    /// index count), with source face `face` on surface `surface` (a [`Record`]
+    /// word): its box, no mark.
+    pub(super) fn new_slot(&mut self, face: u16, surface: u32) -> Result<usize, Error> {
         let f = self.slots;
         let end = u32::try_from(self.index_count).map_err(|_| Self::err(self.index_count, 0))?;
         let capacity = self.offsets.len();
@@ -206,7 +231,11 @@ impl<'a> Sorter<'a, '_, '_> {
         *self
             .marks
             .get_mut(f)
-            .ok_or(Self::err(f.saturating_add(1).saturating_mul(2), words))? = 0;
+            .ok_or(Self::err(f.saturating_add(1).saturating_mul(3), words))? = 0;
+        *self
+            .surfaces
+            .get_mut(f)
+            .ok_or(Self::err(f.saturating_add(1).saturating_mul(3), words))? = surface;
         let capacity = self.boxes.len();
         if f >= capacity {
             return Err(Self::err(f.saturating_add(1), capacity));
@@ -391,7 +420,7 @@ impl<'a> Sorter<'a, '_, '_> {
         let roots = roots.get(..points).unwrap_or(roots);
         // The list is done with: its half of `work` sorts the split points.
         if points > list.len() {
-            return Err(Self::err(points.saturating_mul(2), work_words));
+            return Err(Self::err(points.saturating_mul(3), work_words));
         }
         let (index_count, _) = insert_seam_vertices(
             vertices,

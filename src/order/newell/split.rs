@@ -17,6 +17,7 @@ impl Sorter<'_, '_, '_> {
         let (s, e) = self.range(x);
         let len = e - s;
         let face = self.source.get(x).copied().unwrap_or(0);
+        let surface = self.surface(x);
         let at = |this: &Self, k: usize| this.indices.get(s + k % len.max(1)).copied().unwrap_or(0);
         let side =
             |this: &Self, k: usize| exact_side(plane.distance(vertex(this.vertices, at(this, k))));
@@ -48,7 +49,7 @@ impl Sorter<'_, '_, '_> {
                 self.put(v)?;
             }
         }
-        self.new_slot(face)?;
+        self.new_slot(face, surface)?;
         // The back pieces, walking from the start of a back stretch.
         let made = made.max(1);
         // Vertex indices fit u32 (push_vertex checked).
@@ -77,7 +78,7 @@ impl Sorter<'_, '_, '_> {
                         self.put(split_vertex(ordinal))?;
                     }
                     if open {
-                        self.new_slot(face)?;
+                        self.new_slot(face, surface)?;
                         open = false;
                     }
                 }

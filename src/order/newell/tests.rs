@@ -20,7 +20,7 @@ struct Store {
     rank: [u32; F],
     seams: [[u32; 2]; V],
     boxes: [[f32; 6]; F],
-    work: [u32; 2 * F],
+    work: [u32; 3 * F],
 }
 
 impl Store {
@@ -33,7 +33,7 @@ impl Store {
             rank: [0; F],
             seams: [[0; 2]; V],
             boxes: [[0.0; 6]; F],
-            work: [0; 2 * F],
+            work: [0; 3 * F],
         }
     }
 
