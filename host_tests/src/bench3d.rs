@@ -36,7 +36,9 @@ use crate::image::count_set;
 use crate::obj::load_obj;
 use crate::setup::{IdBuffers, Scene, SceneStorage};
 
+mod ram;
 mod report;
+pub use ram::run as run_ram;
 pub use report::run;
 
 /// Models, from `../shared/models/` (relative to the workspace root).

@@ -393,12 +393,14 @@ fn main() -> ExitCode {
     }
     let mut markdown = false;
     let mut scene3d = false;
+    let mut ram = false;
     let mut jobs = std::thread::available_parallelism().map_or(1, |n| n.get());
     let mut it = args.iter();
     while let Some(a) = it.next() {
         match a.as_str() {
             "--markdown" => markdown = true,
             "--scene3d" => scene3d = true,
+            "--ram" => ram = true,
             "--jobs" => match it.next().and_then(|j| j.parse().ok()) {
                 Some(j) => jobs = j,
                 None => {
@@ -407,12 +409,12 @@ fn main() -> ExitCode {
                 }
             },
             "-h" | "--help" => {
-                println!("usage: bench [--markdown] [--scene3d] [--jobs N]");
+                println!("usage: bench [--markdown] [--scene3d | --ram] [--jobs N]");
                 return ExitCode::SUCCESS;
             }
             other => {
                 eprintln!(
-                    "bench: unknown argument {other:?}\nusage: bench [--markdown] [--scene3d] [--jobs N]"
+                    "bench: unknown argument {other:?}\nusage: bench [--markdown] [--scene3d | --ram] [--jobs N]"
                 );
                 return ExitCode::from(2);
             }
@@ -420,6 +422,9 @@ fn main() -> ExitCode {
     }
     if cfg!(debug_assertions) {
         eprintln!("bench: warning: debug build; run with --release for meaningful counts");
+    }
+    if ram {
+        return host_tests::bench3d::run_ram(markdown);
     }
     if scene3d {
         return host_tests::bench3d::run(markdown, jobs);
