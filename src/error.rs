@@ -59,6 +59,15 @@ pub enum Error<T = Infallible> {
     },
     /// The mesh has no faces.
     EmptyMesh,
+    /// An edge list given to
+    /// [`EdgeAdjacency::from_edges`](crate::mesh::EdgeAdjacency::from_edges) does not
+    /// fit the mesh.
+    BadEdgeList {
+        /// 0-based index of the first edge that does not fit.
+        edge: usize,
+        /// What is wrong with it.
+        problem: EdgeProblem,
+    },
     /// More faces than face ids can name.
     TooManyFaces {
         /// Faces in the mesh.
@@ -122,6 +131,26 @@ pub enum CameraProblem {
     FarNotBeyondNear,
 }
 
+/// Why an edge of a prebuilt edge list was rejected
+/// ([`Error::BadEdgeList`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
+pub enum EdgeProblem {
+    /// An end is not a vertex of the mesh.
+    EndOutOfRange,
+    /// The ends are not ascending (`a < b`).
+    EndsNotAscending,
+    /// The edge does not come strictly after the one before it by `(a, b)`.
+    NotSorted,
+    /// A face is not a face of the mesh.
+    FaceOutOfRange,
+    /// The face count, the two faces and the kind disagree: no face; one face but
+    /// two different faces named, or a kind other than boundary; two or more faces
+    /// not ascending; boundary or non-manifold with another count.
+    FacesDisagree,
+}
+
 impl Error<Infallible> {
     /// Widens a geometry error to the error type of any target.
     pub fn widen<T>(self) -> Error<T> {
@@ -138,6 +167,7 @@ impl Error<Infallible> {
             Error::DegenerateFace { face } => Error::DegenerateFace { face },
             Error::BadFaceOffsets { face } => Error::BadFaceOffsets { face },
             Error::EmptyMesh => Error::EmptyMesh,
+            Error::BadEdgeList { edge, problem } => Error::BadEdgeList { edge, problem },
             Error::TooManyFaces { faces, max } => Error::TooManyFaces { faces, max },
             Error::BadCamera(p) => Error::BadCamera(p),
             Error::DepthOrderMismatch => Error::DepthOrderMismatch,
@@ -180,6 +210,12 @@ impl<T: fmt::Debug> fmt::Display for Error<T> {
             }
             Error::BadFaceOffsets { face } => write!(f, "face offsets are wrong at face {face}"),
             Error::EmptyMesh => f.write_str("the mesh has no faces"),
+            Error::BadEdgeList { edge, problem } => {
+                write!(
+                    f,
+                    "edge {edge} of the edge list does not fit the mesh: {problem:?}"
+                )
+            }
             Error::TooManyFaces { faces, max } => {
                 write!(f, "the mesh has {faces} faces, at most {max} are supported")
             }

@@ -53,7 +53,7 @@ mod span;
 pub use camera::{Camera, Projection};
 pub use codefill::XorFiller;
 pub use codes::SchemeViolation;
-pub use error::{CameraProblem, Error};
+pub use error::{CameraProblem, EdgeProblem, Error};
 pub use framebuffer::{packed_len, PackedFramebuffer};
 pub use geometry::{ScreenPoint, Viewport, GUARD_BAND_PX, MAX_SUBPIXEL_BITS, MAX_VIEWPORT};
 pub use mesh::{

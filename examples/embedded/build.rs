@@ -1,6 +1,10 @@
 //! Puts the repository's memory.x where cortex-m-rt's link.x finds it, and converts
-//! `models/suzanne.obj` into const arrays (`$OUT_DIR/suzanne.rs`) with `obj.rs`.
+//! `models/suzanne.obj` into const arrays (`$OUT_DIR/suzanne.rs`) with `obj.rs`, and
+//! its edge list, built here by pbuffer's own `EdgeAdjacency::build` (crease angle 30
+//! degrees), into a `static` the firmware keeps in flash.
 use std::{env, fmt::Write as _, fs, path::PathBuf};
+
+use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
 
 #[path = "obj.rs"]
 mod obj;
@@ -46,5 +50,33 @@ fn main() {
         "/// Unique welded edges (the edge store's size).\npub const EDGES: usize = {};",
         m.unique_edges()
     );
+    write_edge_list(&mut s, &m);
     fs::write(out.join("suzanne.rs"), s).expect("write suzanne.rs");
+}
+
+/// Appends `EDGE_LIST`: the mesh's edges as `EdgeAdjacency::build` makes them at 30
+/// degrees (the firmware's crease angle), for `EdgeAdjacency::from_edges`.
+fn write_edge_list(s: &mut String, m: &obj::ObjMesh) {
+    let mesh = Mesh::new(&m.vertices, &m.indices, &m.offsets).expect("suzanne is a valid mesh");
+    let mut weld = vec![0u32; m.vertices.len()];
+    let mut scratch = vec![HalfEdgeRecord::EMPTY; m.indices.len()];
+    let mut out = vec![MeshEdge::EMPTY; m.indices.len()];
+    let adjacency = EdgeAdjacency::build(&mesh, 30.0, &mut weld, &mut scratch, &mut out)
+        .expect("storage for every corner suffices");
+    let edges = adjacency.edges();
+    let _ = writeln!(
+        s,
+        "/// The edge list at 30 degrees, made on the host by `EdgeAdjacency::build`: in\n\
+         /// flash, for `EdgeAdjacency::from_edges`.\n\
+         pub static EDGE_LIST: [pbuffer::mesh::MeshEdge; {}] = [",
+        edges.len()
+    );
+    for e in edges {
+        let _ = writeln!(
+            s,
+            "    pbuffer::mesh::MeshEdge {{ a: {}, b: {}, faces: {:?}, face_count: {}, kind: pbuffer::mesh::EdgeKind::{:?} }},",
+            e.a, e.b, e.faces, e.face_count, e.kind
+        );
+    }
+    let _ = writeln!(s, "];");
 }

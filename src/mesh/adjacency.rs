@@ -7,9 +7,9 @@
 //! one edge next to each other, and each run becomes one [`MeshEdge`].
 
 use super::features::{classify, cos_degrees};
-use super::{Mesh, MeshEdge};
+use super::{EdgeKind, Mesh, MeshEdge};
 use crate::sort::sort_by_key;
-use crate::Error;
+use crate::{EdgeProblem, Error};
 
 /// Scratch record for building adjacency: one use of an edge by a face. The
 /// caller lends `indices.len()` of them to [`EdgeAdjacency::build`].
@@ -144,6 +144,49 @@ impl<'s> EdgeAdjacency<'s> {
         Ok(Self {
             edges: out.get(..count).unwrap_or(&[]),
         })
+    }
+
+    /// The edges of `mesh` that [`build`](Self::build) made before, kept where the
+    /// caller likes: in flash (a `static` generated on the host, say), so that the
+    /// edge list, the weld map and the half-edge records take no RAM on the target.
+    ///
+    /// Checked in one pass, so that no later use can index out of range or meet an
+    /// edge [`build`](Self::build) would not make: ends and faces in range, ends
+    /// ascending, edges strictly sorted by `(a, b)`, and face count, faces and kind
+    /// agreeing ([`Error::BadEdgeList`] names the first edge that does not and why).
+    /// Not checked: that the list is this mesh's (welding, the crease angle); a list
+    /// built for another mesh of the same size draws the wrong lines.
+    pub fn from_edges(mesh: &Mesh<'_>, edges: &'s [MeshEdge]) -> Result<Self, Error> {
+        let (vertices, faces) = (mesh.vertices().len(), mesh.face_count());
+        let mut previous: Option<(u32, u32)> = None;
+        for (k, e) in edges.iter().enumerate() {
+            let bad = |problem| Err(Error::BadEdgeList { edge: k, problem });
+            if e.b as usize >= vertices {
+                return bad(EdgeProblem::EndOutOfRange);
+            }
+            if e.a >= e.b {
+                return bad(EdgeProblem::EndsNotAscending);
+            }
+            if previous.is_some_and(|p| p >= (e.a, e.b)) {
+                return bad(EdgeProblem::NotSorted);
+            }
+            if e.faces.iter().any(|&f| f as usize >= faces) {
+                return bad(EdgeProblem::FaceOutOfRange);
+            }
+            let [f0, f1] = e.faces;
+            let agree = match (e.face_count, e.kind) {
+                (0, _) => false,
+                (1, kind) => f0 == f1 && kind == EdgeKind::Boundary,
+                (2, EdgeKind::Crease | EdgeKind::Smooth | EdgeKind::Inert) => f0 < f1,
+                (3.., EdgeKind::NonManifold) => f0 < f1,
+                _ => false,
+            };
+            if !agree {
+                return bad(EdgeProblem::FacesDisagree);
+            }
+            previous = Some((e.a, e.b));
+        }
+        Ok(Self { edges })
     }
 
     /// The unique edges, sorted by `(a, b)`.

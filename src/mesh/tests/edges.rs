@@ -2,6 +2,7 @@
 
 use super::*;
 use crate::mesh::features::cos_degrees;
+use crate::EdgeProblem;
 
 #[test]
 fn quad_cube_has_twelve_creases_and_is_closed() {
@@ -325,4 +326,78 @@ fn crease_angle_is_exact_around_the_threshold() {
     let mesh = Mesh::new(&vertices, &indices, &[0, 3, 6]).unwrap();
     let edges = buffers.build(&mesh, 0.0).edges();
     assert_eq!(count_kind(edges, EdgeKind::Smooth), 1);
+}
+
+#[test]
+fn a_prebuilt_edge_list_is_taken_back_as_built() {
+    let indices = triangle_indices();
+    let mesh = Mesh::new(&CUBE, &indices, &TRI_OFFSETS).unwrap();
+    let mut buffers = Buffers::new();
+    let built = buffers.build(&mesh, 30.0).edges();
+    // As firmware keeps it: a copy made elsewhere (a `static` in flash).
+    let mut copy = [MeshEdge::EMPTY; 64];
+    copy[..built.len()].copy_from_slice(built);
+    let taken = EdgeAdjacency::from_edges(&mesh, &copy[..built.len()]).unwrap();
+    assert_eq!(taken.edges(), built);
+    assert!(taken.is_closed());
+    // The empty list is a (useless) valid list.
+    assert!(EdgeAdjacency::from_edges(&mesh, &[]).is_ok());
+}
+
+#[test]
+fn a_prebuilt_edge_list_that_does_not_fit_names_its_first_bad_edge() {
+    let indices = quad_indices();
+    let mesh = Mesh::new(&CUBE, &indices, &QUAD_OFFSETS).unwrap();
+    let mut buffers = Buffers::new();
+    let built = buffers.build(&mesh, 30.0).edges();
+    let n = built.len();
+    let mut list = [MeshEdge::EMPTY; 64];
+    let check = |list: &[MeshEdge], edge: usize, problem: EdgeProblem| {
+        assert_eq!(
+            EdgeAdjacency::from_edges(&mesh, list).map(|a| a.edges().len()),
+            Err(Error::BadEdgeList { edge, problem }),
+            "{problem:?}"
+        );
+    };
+    type Break = fn(&mut MeshEdge);
+    let cases: [(usize, Break, EdgeProblem); 9] = [
+        (3, |e| e.b = 8, EdgeProblem::EndOutOfRange),
+        (3, |e| e.a = e.b, EdgeProblem::EndsNotAscending),
+        (
+            0,
+            |e| core::mem::swap(&mut e.a, &mut e.b),
+            EdgeProblem::EndsNotAscending,
+        ),
+        (5, |e| e.faces[1] = 6, EdgeProblem::FaceOutOfRange),
+        (5, |e| e.face_count = 0, EdgeProblem::FacesDisagree),
+        (5, |e| e.faces.reverse(), EdgeProblem::FacesDisagree),
+        (
+            5,
+            |e| e.kind = EdgeKind::Boundary,
+            EdgeProblem::FacesDisagree,
+        ),
+        (5, |e| e.face_count = 3, EdgeProblem::FacesDisagree),
+        (5, |e| e.face_count = 1, EdgeProblem::FacesDisagree),
+    ];
+    for (k, break_it, problem) in cases {
+        list[..n].copy_from_slice(built);
+        break_it(&mut list[k]);
+        check(&list[..n], k, problem);
+    }
+    // Out of order, and a repeated edge: the later one is named.
+    list[..n].copy_from_slice(built);
+    list.swap(6, 7);
+    check(&list[..n], 7, EdgeProblem::NotSorted);
+    list[..n].copy_from_slice(built);
+    list[7] = list[6];
+    check(&list[..n], 7, EdgeProblem::NotSorted);
+    // A list for a bigger mesh: an end beyond this mesh's vertices.
+    let small = Mesh::new(&CUBE[..4], &[0, 1, 3, 0, 3, 2], &[0, 3, 6]).unwrap();
+    assert!(matches!(
+        EdgeAdjacency::from_edges(&small, built),
+        Err(Error::BadEdgeList {
+            problem: EdgeProblem::EndOutOfRange | EdgeProblem::FaceOutOfRange,
+            ..
+        })
+    ));
 }

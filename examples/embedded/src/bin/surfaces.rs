@@ -7,7 +7,7 @@ use core::ptr::addr_of_mut;
 
 use cortex_m_rt::entry;
 use panic_semihosting as _;
-use pbuffer::mesh::{Mesh, MeshEdge};
+use pbuffer::mesh::{EdgeAdjacency, Mesh};
 use pbuffer::{packed_len, DrawMode, PackedFramebuffer};
 use pbuffer_examples::scenes::{self, fnv1a64, suzanne as scene, Engine, SuzanneBuffers};
 use pbuffer_examples::{fw, suzanne};
@@ -21,7 +21,6 @@ type Fb = PackedFramebuffer<
 
 static mut FB: Fb = Fb::new();
 static mut BUFFERS: SuzanneBuffers = SuzanneBuffers::new();
-static mut EDGES: [MeshEdge; suzanne::EDGES] = [MeshEdge::EMPTY; suzanne::EDGES];
 static mut ENGINE: Engine = Engine::new();
 
 #[entry]
@@ -29,19 +28,18 @@ fn main() -> ! {
     fw::paint_stack();
     let mut counter = fw::Counter::new();
     // SAFETY: main runs once; these are its only references to the statics.
-    let (fb, buffers, store, engine) = unsafe {
+    let (fb, buffers, engine) = unsafe {
         (
             &mut *addr_of_mut!(FB),
             &mut *addr_of_mut!(BUFFERS),
-            &mut *addr_of_mut!(EDGES),
             &mut *addr_of_mut!(ENGINE),
         )
     };
     let mesh = Mesh::new(&suzanne::VERTICES, &suzanne::INDICES, &suzanne::OFFSETS)
         .unwrap_or_else(|e| fw::fail(NAME, &e));
-    let edges = fw::build_edges::<{ suzanne::VERTICES.len() }, { suzanne::INDICES.len() }>(
-        NAME, &mesh, store,
-    );
+    // The edge list was built on the host (build.rs) and stays in flash.
+    let edges = EdgeAdjacency::from_edges(&mesh, &suzanne::EDGE_LIST)
+        .unwrap_or_else(|e| fw::fail(NAME, &e));
     let boot = fw::stack_peak();
     fw::run(NAME, scene::FRAMES, boot, &mut counter, |n, c| {
         let view = scene::view(n);

@@ -7,7 +7,7 @@ use core::ptr::addr_of_mut;
 
 use cortex_m_rt::entry;
 use panic_semihosting as _;
-use pbuffer::mesh::{Mesh, MeshEdge};
+use pbuffer::mesh::{EdgeAdjacency, Mesh};
 use pbuffer::{packed_len, Pattern};
 use pbuffer_examples::plain::PlainBuffers;
 use pbuffer_examples::scenes::{fnv1a64, suzanne as scene};
@@ -18,17 +18,18 @@ const PIXELS: usize = scene::WIDTH * scene::HEIGHT;
 type Buffers = PlainBuffers<PIXELS, { packed_len(scene::WIDTH, scene::HEIGHT) }, 507, 500>;
 
 static mut BUFFERS: Buffers = Buffers::new();
-static mut EDGES: [MeshEdge; suzanne::EDGES] = [MeshEdge::EMPTY; suzanne::EDGES];
 
 #[entry]
 fn main() -> ! {
     fw::paint_stack();
     let mut counter = fw::Counter::new();
-    // SAFETY: main runs once; these are its only references to the statics.
-    let (buffers, store) = unsafe { (&mut *addr_of_mut!(BUFFERS), &mut *addr_of_mut!(EDGES)) };
+    // SAFETY: main runs once; this is its only reference to the static.
+    let buffers = unsafe { &mut *addr_of_mut!(BUFFERS) };
     let mesh = Mesh::new(&suzanne::VERTICES, &suzanne::INDICES, &suzanne::OFFSETS)
         .unwrap_or_else(|e| fw::fail(NAME, &e));
-    let edges = fw::build_edges::<507, { suzanne::INDICES.len() }>(NAME, &mesh, store);
+    // The edge list was built on the host (build.rs) and stays in flash.
+    let edges = EdgeAdjacency::from_edges(&mesh, &suzanne::EDGE_LIST)
+        .unwrap_or_else(|e| fw::fail(NAME, &e));
     let cull = edges.is_closed();
     buffers.prepare(&mesh);
     let boot = fw::stack_peak();
