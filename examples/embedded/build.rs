@@ -45,11 +45,6 @@ fn main() {
         m.offsets.len(),
         m.offsets
     );
-    let _ = writeln!(
-        s,
-        "/// Unique welded edges (the edge store's size).\npub const EDGES: usize = {};",
-        m.unique_edges()
-    );
     write_edge_list(&mut s, &m);
     fs::write(out.join("suzanne.rs"), s).expect("write suzanne.rs");
 }

@@ -274,6 +274,22 @@ pub(super) fn fans(mesh: &Mesh<'_>, face: usize, tolerance_sq: f64) -> bool {
     turns && fan
 }
 
+/// The fan triangles `(v0, vk, vk+1)` of `face` (its `corners`), each with its record
+/// word ([`Record::of_fan`]): the surfaces a face that [`fans`] enters an order as.
+pub(super) fn fan_triangles(
+    face: usize,
+    corners: &[u32],
+) -> impl Iterator<Item = (u32, [u32; 3])> + '_ {
+    let v0 = corners.first().copied().unwrap_or(0);
+    let rest = corners.get(1..).unwrap_or(&[]);
+    rest.windows(2)
+        .enumerate()
+        .filter_map(move |(k, pair)| match *pair {
+            [a, b] => Some((Record::of_fan(face, k + 1), [v0, a, b])),
+            _ => None,
+        })
+}
+
 /// Is face `face` planar as the tree sees it (every corner on its Newell plane
 /// within [`PLANE_TOLERANCE`](super::PLANE_TOLERANCE), or a zero normal)? Only the
 /// fragments of a face that is not can overlap on screen (see [`fans`]).

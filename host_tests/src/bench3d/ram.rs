@@ -19,10 +19,11 @@ use std::mem::{size_of, size_of_val};
 use std::process::ExitCode;
 
 use fixed::types::extra::U4;
-use pbuffer::render::RowCodes;
-use pbuffer::{CodeFillRenderer, MonoPalette, PackedFramebuffer, Stats, Visibility};
+use pbuffer::{BspTree, CodeFillRenderer, Stats};
 
-use super::{View, ACTIVE_EDGES, ACTIVE_FACES, CODE_WORDS, MODELS, ORDER_WORDS, POLY, SIZES};
+use super::{
+    code_fill, View, ACTIVE_EDGES, ACTIVE_FACES, CODE_WORDS, MODELS, ORDER_WORDS, POLY, SIZES,
+};
 use crate::bsp::{with_bsp, DepthRanks};
 use crate::callgrind::thousands;
 use crate::setup::{IdBuffers, SceneStorage};
@@ -193,85 +194,70 @@ fn sized<const W: usize, const H: usize, const N: usize>(
 ) -> Result<(Parts, Stats), String> {
     let mut storage = SceneStorage::new(&view.data);
     let scene = storage.scene(&view.camera, &view.spec())?;
-    let drawn = |tree: Option<(&pbuffer::BspTree<'_>, usize)>| -> Result<(Parts, Stats), String> {
+    let measure = |tree: Option<(&BspTree<'_>, usize)>| -> Result<(Parts, Stats), String> {
+        // The frame as `--scene3d` draws it, with room for every model's busiest row.
+        let drawn = match tree {
+            Some(_) => code_fill::<W, H, N, ORDER_WORDS, FACES, EDGES>(&scene, tree, band, true),
+            None => code_fill::<W, H, N, CODE_WORDS, FACES, EDGES>(&scene, None, band, false),
+        }
+        .map_err(|e| e.to_string())?;
+        let stats = drawn.stats;
+        // The same buffers, sized as `code_fill` sizes them, taken apart.
         let surfaces = tree.map_or(scene.mesh, |(t, _)| t.fragments());
         let faces = scene.mesh.face_count();
         let edges = scene.adjacency.edges().len();
-        let mut buffers = IdBuffers::sized(W, H, band, surfaces.vertices().len(), faces, edges);
-        let mut order = vec![0u32; surfaces.face_count()];
-        let mut ranks = DepthRanks::new(tree.map(|(t, _)| t));
-        let sliced_words = if ordered {
-            CodeFillRenderer::<U4, ORDER_WORDS, FACES, EDGES, POLY>::bit_sliced_len(W)
-        } else {
-            0
-        };
-        let mut words = vec![0u32; sliced_words];
-        let mut ws = buffers.code_workspace(&mut order);
+        let buffers = IdBuffers::sized(W, H, band, surfaces.vertices().len(), faces, edges);
         let mut parts = Parts {
-            vertices: size_of_val(ws.vertices),
-            bits: size_of_val(ws.drawn) + size_of_val(ws.features),
-            order: size_of_val(ws.order),
-            ids: size_of_val(ws.ids),
-            lines: size_of_val(ws.lines),
+            vertices: size_of_val(buffers.vertices.as_slice()),
+            bits: size_of_val(buffers.drawn.as_slice()) + size_of_val(buffers.features.as_slice()),
+            order: surfaces.face_count() * size_of::<u32>(),
+            ids: size_of_val(buffers.ids.as_slice()),
+            lines: size_of_val(buffers.lines.as_slice()),
             edge_list: size_of_val(scene.adjacency.edges()),
-            tree: tree.map_or(0, |(_, kept)| kept) + ranks.bytes(),
+            tree: tree.map_or(0, |(_, kept)| kept) + DepthRanks::new(tree.map(|(t, _)| t)).bytes(),
             ..Parts::default()
         };
-        let mut engine = Box::new(CodeFillRenderer::<U4, ORDER_WORDS, FACES, EDGES, POLY>::new());
-        let mut fb = Box::new(PackedFramebuffer::<W, H, N>::new());
-        let visibility = match tree {
-            Some((t, _)) => Visibility::Order(
-                ranks
-                    .order(t, &scene.camera.viewpoint())
-                    .map_err(|e| e.to_string())?,
-            ),
-            None => Visibility::Planes,
-        };
-        let codes = if ordered {
-            RowCodes::BitSliced(&mut words)
-        } else {
-            RowCodes::Crossings
-        };
-        let stats = engine
-            .render_with(
-                &scene.mesh,
-                &scene.adjacency,
-                &scene.camera,
-                &scene.settings,
-                &mut ws,
-                codes,
-                visibility,
-                &MonoPalette::default(),
-                &mut *fb,
-                &mut (),
-            )
-            .map_err(|e| e.to_string())?;
         let code_words = (stats.code_bits as usize).div_ceil(32).max(1);
         let (peak_faces, peak_edges) = (stats.peak_faces as usize, stats.peak_edges as usize);
-        // As compiled by `bench --scene3d`; a frame that needs more there is refused
-        // and drawn by a roomier rung (its table says which).
-        let compiled = if ordered {
-            size_of::<CodeFillRenderer<U4, ORDER_WORDS, ACTIVE_FACES, ACTIVE_EDGES, POLY>>()
-        } else {
-            size_of::<CodeFillRenderer<U4, CODE_WORDS, ACTIVE_FACES, ACTIVE_EDGES, POLY>>()
-        };
         // `bytes_for` of a one-word code, plus each further word's code and owners.
         let per_word = size_of::<u32>() + 32 * size_of::<u16>();
         let needed = CodeFillRenderer::<U4, 1, 1, 1, POLY>::bytes_for(peak_faces, peak_edges)
             + (code_words - 1) * per_word;
+        // As compiled by `bench --scene3d` (a frame that needs more is refused there
+        // and drawn by a roomier rung; its table says which), and as `code_fill` just
+        // compiled it, with room for every model.
+        let (compiled, roomy) = if ordered {
+            (
+                size_of::<CodeFillRenderer<U4, ORDER_WORDS, ACTIVE_FACES, ACTIVE_EDGES, POLY>>(),
+                size_of::<CodeFillRenderer<U4, ORDER_WORDS, FACES, EDGES, POLY>>(),
+            )
+        } else {
+            (
+                size_of::<CodeFillRenderer<U4, CODE_WORDS, ACTIVE_FACES, ACTIVE_EDGES, POLY>>(),
+                size_of::<CodeFillRenderer<U4, CODE_WORDS, FACES, EDGES, POLY>>(),
+            )
+        };
         parts.renderer = (compiled, needed);
         if ordered {
             let compiled = CodeFillRenderer::<U4, ORDER_WORDS, 1, 1, POLY>::bit_sliced_len(W);
             let needed = W * code_words + W.div_ceil(32);
             parts.sliced = (4 * compiled, 4 * needed);
         }
+        // The parts add up to the working RAM `code_fill` counted.
+        let sum = parts.compiled() - compiled + roomy;
+        if sum != drawn.working_ram {
+            return Err(format!(
+                "the parts add up to {sum} bytes, code_fill counted {}",
+                drawn.working_ram
+            ));
+        }
         Ok((parts, stats))
     };
     if ordered {
         with_bsp(&scene.mesh, |tree, figures| {
-            drawn(Some((tree, figures.kept_bytes)))
+            measure(Some((tree, figures.kept_bytes)))
         })?
     } else {
-        drawn(None)
+        measure(None)
     }
 }

@@ -352,13 +352,7 @@ fn a_prebuilt_edge_list_that_does_not_fit_names_its_first_bad_edge() {
     let built = buffers.build(&mesh, 30.0).edges();
     let n = built.len();
     let mut list = [MeshEdge::EMPTY; 64];
-    let check = |list: &[MeshEdge], edge: usize, problem: EdgeProblem| {
-        assert_eq!(
-            EdgeAdjacency::from_edges(&mesh, list).map(|a| a.edges().len()),
-            Err(Error::BadEdgeList { edge, problem }),
-            "{problem:?}"
-        );
-    };
+    let check = |list: &[MeshEdge], edge: usize, problem| check_on(&mesh, list, edge, problem);
     type Break = fn(&mut MeshEdge);
     let cases: [(usize, Break, EdgeProblem); 9] = [
         (3, |e| e.b = 8, EdgeProblem::EndOutOfRange),
@@ -391,13 +385,18 @@ fn a_prebuilt_edge_list_that_does_not_fit_names_its_first_bad_edge() {
     list[..n].copy_from_slice(built);
     list[7] = list[6];
     check(&list[..n], 7, EdgeProblem::NotSorted);
-    // A list for a bigger mesh: an end beyond this mesh's vertices.
+    // A list for a bigger mesh: its first edge, (0, 1) of faces 0 and 2, names a
+    // face this two-face mesh does not have.
     let small = Mesh::new(&CUBE[..4], &[0, 1, 3, 0, 3, 2], &[0, 3, 6]).unwrap();
-    assert!(matches!(
-        EdgeAdjacency::from_edges(&small, built),
-        Err(Error::BadEdgeList {
-            problem: EdgeProblem::EndOutOfRange | EdgeProblem::FaceOutOfRange,
-            ..
-        })
-    ));
+    assert_eq!((built[0].a, built[0].b, built[0].faces), (0, 1, [0, 2]));
+    check_on(&small, built, 0, EdgeProblem::FaceOutOfRange);
+}
+
+/// `list` is refused for `mesh` at `edge` for `problem`.
+fn check_on(mesh: &Mesh<'_>, list: &[MeshEdge], edge: usize, problem: EdgeProblem) {
+    assert_eq!(
+        EdgeAdjacency::from_edges(mesh, list).map(|a| a.edges().len()),
+        Err(Error::BadEdgeList { edge, problem }),
+        "{problem:?}"
+    );
 }

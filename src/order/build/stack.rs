@@ -6,7 +6,7 @@ use super::split::{split, Writer};
 use super::HEADER;
 use crate::mesh::Mesh;
 use crate::order::bsp::{BspOptions, NO_NODE};
-use crate::order::plane::{fans, Fate, Record, Records, Tally};
+use crate::order::plane::{fan_triangles, fans, Fate, Record, Records, Tally};
 use crate::Error;
 
 /// The build's state: the work stack of fragment sets still to be split.
@@ -63,11 +63,10 @@ impl Build<'_, '_, '_> {
         for face in 0..count {
             let corners = mesh.face(face);
             if fanned(face) {
-                let v0 = corners.first().copied().unwrap_or(0);
-                for (k, pair) in corners.get(1..).unwrap_or(&[]).windows(2).enumerate() {
-                    put(Record::of_fan(face, k + 1));
+                for (word, triangle) in fan_triangles(face, corners) {
+                    put(word);
                     put(3);
-                    [v0].iter().chain(pair).for_each(|&i| put(i));
+                    triangle.iter().for_each(|&i| put(i));
                 }
             } else {
                 // Face ids are below MAX_FACES < 2^16.

@@ -10,7 +10,7 @@ use crate::camera::Camera;
 use crate::mesh::{Mesh, MAX_FACES};
 use crate::order::bsp::PLANE_TOLERANCE;
 use crate::order::build::need;
-use crate::order::plane::{fans, vertex, Plane, Record};
+use crate::order::plane::{fan_triangles, fans, vertex, Plane, Record};
 use crate::order::seams::{insert_seam_vertices, Seams};
 use crate::sort::sort_by_key;
 use crate::Error;
@@ -48,7 +48,7 @@ pub(super) struct Sorter<'a, 'b, 'm> {
     surfaces: &'a mut [u32],
     /// Slots made so far.
     pub(super) slots: usize,
-    /// Twice the words of `list` (for errors about `work`).
+    /// The words of `work` (for errors about it).
     pub(super) work_words: usize,
     pub(super) generation: u32,
     /// Marked fragments moved ahead again in this generation (at most the fragments
@@ -174,21 +174,19 @@ impl<'a> Sorter<'a, '_, '_> {
             .ok_or(Self::err(faces.saturating_add(1), capacity))? = 0;
         for f in 0..faces {
             let corners = mesh.face(f);
-            // Face ids are below MAX_FACES < 2^16.
             if fans(mesh, f, self.tolerance_sq) {
-                let v0 = corners.first().copied().unwrap_or(0);
-                for (k, pair) in corners.get(1..).unwrap_or(&[]).windows(2).enumerate() {
-                    self.put(v0)?;
-                    for &i in pair {
+                for (word, triangle) in fan_triangles(f, corners) {
+                    for i in triangle {
                         self.put(i)?;
                     }
-                    self.new_slot(f as u16, Record::of_fan(f, k + 1))?;
+                    self.new_slot(word)?;
                 }
             } else {
                 for &i in corners {
                     self.put(i)?;
                 }
-                self.new_slot(f as u16, f as u32)?;
+                // Face ids are below MAX_FACES < 2^16.
+                self.new_slot(f as u32)?;
             }
         }
         let viewpoint = self.view.viewpoint;
@@ -212,9 +210,11 @@ impl<'a> Sorter<'a, '_, '_> {
     }
 
     /// Takes the next slot for the fragment just written (`offsets[slots]` to the
-    /// index count), with source face `face` on surface `surface` (a [`Record`]
-    /// word): its box, no mark.
-    pub(super) fn new_slot(&mut self, face: u16, surface: u32) -> Result<usize, Error> {
+    /// index count), on surface `surface` (a [`Record`] word, which names its source
+    /// face): its box, no mark.
+    pub(super) fn new_slot(&mut self, surface: u32) -> Result<usize, Error> {
+        // Face ids are below MAX_FACES < 2^16.
+        let face = Record::face(surface) as u16;
         let f = self.slots;
         let end = u32::try_from(self.index_count).map_err(|_| Self::err(self.index_count, 0))?;
         let capacity = self.offsets.len();
@@ -418,7 +418,7 @@ impl<'a> Sorter<'a, '_, '_> {
         let points = vertex_count.saturating_sub(base);
         let roots: &[[u32; 2]] = seams;
         let roots = roots.get(..points).unwrap_or(roots);
-        // The list is done with: its half of `work` sorts the split points.
+        // The list is done with: its third of `work` sorts the split points.
         if points > list.len() {
             return Err(Self::err(points.saturating_mul(3), work_words));
         }

@@ -16,7 +16,6 @@ impl Sorter<'_, '_, '_> {
     pub(super) fn split(&mut self, x: usize, plane: &Plane) -> Result<Range<usize>, Error> {
         let (s, e) = self.range(x);
         let len = e - s;
-        let face = self.source.get(x).copied().unwrap_or(0);
         let surface = self.surface(x);
         let at = |this: &Self, k: usize| this.indices.get(s + k % len.max(1)).copied().unwrap_or(0);
         let side =
@@ -49,7 +48,7 @@ impl Sorter<'_, '_, '_> {
                 self.put(v)?;
             }
         }
-        self.new_slot(face, surface)?;
+        self.new_slot(surface)?;
         // The back pieces, walking from the start of a back stretch.
         let made = made.max(1);
         // Vertex indices fit u32 (push_vertex checked).
@@ -78,7 +77,7 @@ impl Sorter<'_, '_, '_> {
                         self.put(split_vertex(ordinal))?;
                     }
                     if open {
-                        self.new_slot(face, surface)?;
+                        self.new_slot(surface)?;
                         open = false;
                     }
                 }
