@@ -1,7 +1,8 @@
 //! Puts the repository's memory.x where cortex-m-rt's link.x finds it, and converts
 //! `models/suzanne.obj` into const arrays (`$OUT_DIR/suzanne.rs`) with `obj.rs`, and
 //! its edge list, built here by pbuffer's own `EdgeAdjacency::build` (crease angle 30
-//! degrees), into a `static` the firmware keeps in flash.
+//! degrees), and which of its faces are planar (`pbuffer::order::planar_faces`), into
+//! `static`s the firmware keeps in flash.
 use std::{env, fmt::Write as _, fs, path::PathBuf};
 
 use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
@@ -46,7 +47,25 @@ fn main() {
         m.offsets
     );
     write_edge_list(&mut s, &m);
+    write_planar_faces(&mut s, &m);
     fs::write(out.join("suzanne.rs"), s).expect("write suzanne.rs");
+}
+
+/// Appends `PLANAR`: which faces are planar, as `pbuffer::order::planar_faces` finds
+/// them here, for `Mesh::with_planar_faces` (the firmware then tests no face's
+/// planarity per frame: a test in f64, in software on the Cortex-M4).
+fn write_planar_faces(s: &mut String, m: &obj::ObjMesh) {
+    let mesh = Mesh::new(&m.vertices, &m.indices, &m.offsets).expect("suzanne is a valid mesh");
+    let mut bits = vec![0u32; pbuffer::mesh::planar_words(mesh.face_count())];
+    pbuffer::order::planar_faces(&mesh, &mut bits).expect("sized by planar_words");
+    let _ = writeln!(
+        s,
+        "/// Which faces are planar (bit f % 32 of word f / 32), made on the host by\n\
+         /// `pbuffer::order::planar_faces`: in flash, for `Mesh::with_planar_faces`.\n\
+         pub static PLANAR: [u32; {}] = {:?};",
+        bits.len(),
+        bits
+    );
 }
 
 /// Appends `EDGE_LIST`: the mesh's edges as `EdgeAdjacency::build` makes them at 30

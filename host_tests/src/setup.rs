@@ -15,9 +15,14 @@ use crate::pipeline::{
     camera, frame, settings, AdjacencyStorage, Collect, MeshArrays, PackedFrame,
 };
 
-/// The owned storage behind a [`Scene`]: the mesh's arrays and its adjacency's.
+/// The owned storage behind a [`Scene`]: the mesh's arrays, its faces' planarity
+/// and its adjacency's.
 pub struct SceneStorage {
     pub arrays: MeshArrays,
+    /// Which faces are planar ([`pbuffer::order::planar_faces`]), kept with the mesh
+    /// ([`Mesh::with_planar_faces`]) as firmware keeps them: part of the mesh, made
+    /// once, not of a frame.
+    pub planar: Vec<u32>,
     pub adjacency: AdjacencyStorage,
 }
 
@@ -26,14 +31,23 @@ impl SceneStorage {
     pub fn new(data: &MeshData) -> Self {
         let arrays = MeshArrays::new(data);
         let adjacency = AdjacencyStorage::new(&arrays);
-        Self { arrays, adjacency }
+        let planar = vec![0; pbuffer::mesh::planar_words(arrays.offsets.len().saturating_sub(1))];
+        Self {
+            arrays,
+            planar,
+            adjacency,
+        }
     }
 
-    /// The library mesh, its adjacency (crease angle `spec.crease_deg`), the camera of
+    /// The library mesh (its faces' planarity kept), its adjacency (crease angle `spec.crease_deg`), the camera of
     /// `cam` and the settings of `spec`, in that order (the first error is returned).
     pub fn scene(&mut self, cam: &CameraSpec, spec: &RenderSpec) -> Result<Scene<'_>, String> {
         let arrays = &self.arrays;
         let mesh = Mesh::new(&arrays.vertices, &arrays.indices, &arrays.offsets)
+            .map_err(|e| format!("mesh: {e}"))?;
+        pbuffer::order::planar_faces(&mesh, &mut self.planar).map_err(|e| format!("mesh: {e}"))?;
+        let mesh = mesh
+            .with_planar_faces(&self.planar)
             .map_err(|e| format!("mesh: {e}"))?;
         let build_bytes = self.adjacency.build_bytes();
         let adjacency = self.adjacency.build(&mesh, spec.crease_deg)?;

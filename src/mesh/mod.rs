@@ -33,6 +33,9 @@ pub struct Mesh<'a> {
     face_offsets: &'a [u32],
     /// Kept from validation: the renderer sizes its per-face buffers by it.
     max_face_len: usize,
+    /// Which faces are planar, one bit a face, when the caller keeps them
+    /// ([`Mesh::with_planar_faces`]).
+    planar: Option<&'a [u32]>,
 }
 
 /// Where the eye is, for facing tests.
@@ -98,6 +101,7 @@ impl<'a> Mesh<'a> {
             indices,
             face_offsets,
             max_face_len: 0,
+            planar: None,
         };
         for face in 0..faces {
             let corners = mesh.face(face);
@@ -110,6 +114,40 @@ impl<'a> Mesh<'a> {
             mesh.max_face_len = mesh.max_face_len.max(corners.len());
         }
         Ok(mesh)
+    }
+
+    /// This mesh, with which of its faces are planar kept in `bits` (bit `f % 32` of
+    /// word `f / 32` set for a planar face), as [`order::planar_faces`] fills them:
+    /// the renderers then read a bit where they would test a face with more than
+    /// three corners in every frame (a test in `f64`, in software on a Cortex-M4).
+    /// Firmware can make the bits on the host and keep them in flash.
+    ///
+    /// `bits` needs [`planar_words`]`(face_count)` words, else
+    /// [`Error::CapacityExceeded`] with the words needed; words beyond them are not
+    /// read. That the bits belong to this mesh is not checked: bits of another mesh
+    /// give its faces the wrong depth rule (a fan triangle's or the single plane's),
+    /// never a panic.
+    ///
+    /// [`order::planar_faces`]: crate::order::planar_faces
+    pub fn with_planar_faces(self, bits: &'a [u32]) -> Result<Self, Error> {
+        let needed = planar_words(self.face_count());
+        if bits.len() < needed {
+            return Err(Error::CapacityExceeded {
+                needed,
+                capacity: bits.len(),
+            });
+        }
+        Ok(Self {
+            planar: Some(bits),
+            ..self
+        })
+    }
+
+    /// Whether face `f` is planar, from the bits kept by [`Mesh::with_planar_faces`];
+    /// `None` when none are kept.
+    pub(crate) fn kept_planarity(&self, f: usize) -> Option<bool> {
+        let word = self.planar?.get(f / 32)?;
+        Some(word & (1 << (f % 32)) != 0)
     }
 
     /// The vertex positions.
@@ -209,6 +247,12 @@ impl<'a> Mesh<'a> {
     pub(crate) fn position_bits(&self, i: u32) -> Option<[u32; 3]> {
         self.vertices.get(i as usize).map(|p| p.map(f32::to_bits))
     }
+}
+
+/// Words of face bits a mesh of `faces` faces needs for
+/// [`Mesh::with_planar_faces`]: one bit a face.
+pub const fn planar_words(faces: usize) -> usize {
+    faces.div_ceil(32)
 }
 
 /// Checks the CSR offsets against the index count; see [`Mesh::new`].

@@ -24,3 +24,4 @@ pub use bsp::{
 };
 pub use newell::{NewellOptions, NewellOrder, NewellSizes, NewellStorage};
 pub(crate) use plane::is_planar;
+pub use plane::planar_faces;

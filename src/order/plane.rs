@@ -1,6 +1,7 @@
 //! Planes, vertex classification and the work-stack records of the BSP build (f64).
 
-use crate::mesh::Mesh;
+use crate::mesh::{planar_words, Mesh};
+use crate::Error;
 
 /// Where a vertex lies relative to a plane, with the build's tolerance.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -294,6 +295,36 @@ pub(super) fn fan_triangles(
 /// within [`PLANE_TOLERANCE`](super::PLANE_TOLERANCE), or a zero normal)? Only the
 /// fragments of a face that is not can overlap on screen (see [`fans`]).
 pub(crate) fn is_planar(mesh: &Mesh<'_>, face: usize) -> bool {
+    mesh.kept_planarity(face)
+        .unwrap_or_else(|| test_planar(mesh, face))
+}
+
+/// Which faces of `mesh` are planar, as every renderer and the BSP build judge them
+/// (each corner within [`PLANE_TOLERANCE`](super::PLANE_TOLERANCE) of the face's
+/// Newell plane, in `f64`), into `bits` for
+/// [`Mesh::with_planar_faces`]: bit `f % 32` of word `f / 32` set for a planar face.
+/// Returns the words written, [`planar_words`]`(mesh.face_count())`;
+/// [`Error::CapacityExceeded`] with that many when `bits` is shorter. Once per mesh:
+/// the test is the same in every view.
+pub fn planar_faces(mesh: &Mesh<'_>, bits: &mut [u32]) -> Result<usize, Error> {
+    let needed = planar_words(mesh.face_count());
+    let Some(words) = bits.get_mut(..needed) else {
+        return Err(Error::CapacityExceeded {
+            needed,
+            capacity: bits.len(),
+        });
+    };
+    words.fill(0);
+    for face in 0..mesh.face_count() {
+        if let Some(word) = words.get_mut(face / 32) {
+            *word |= u32::from(test_planar(mesh, face)) << (face % 32);
+        }
+    }
+    Ok(needed)
+}
+
+/// [`is_planar`]'s test, made afresh.
+fn test_planar(mesh: &Mesh<'_>, face: usize) -> bool {
     let tolerance = super::PLANE_TOLERANCE;
     let whole = Plane::of_record(mesh, face as u32, tolerance * tolerance);
     let vertices = mesh.vertices();

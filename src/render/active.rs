@@ -23,8 +23,10 @@ pub(crate) struct ActiveEdge {
     pub mark: bool,
 }
 
+/// A slot no edge has taken since the list was made: all zero (see [`Edge::UNSET`]);
+/// `insert` writes a slot whole before it is read.
 const UNUSED: ActiveEdge = ActiveEdge {
-    edge: Edge::ZERO,
+    edge: Edge::UNSET,
     x: 0,
     face: 0,
     mark: false,

@@ -20,6 +20,11 @@ use crate::{Pattern, Projection};
 /// square wall at z = 0.5 over the corner v3. Seen from +z (orthographic, 8 px per
 /// unit, screen x = 8 (x + 2), y = 8 (2 - y)); the wall is a band of 4 rows of 16 px.
 fn twisted_quad_and_wall(band: u16) -> Vec<u16> {
+    twisted_quad_and_wall_kept(band, None)
+}
+
+/// The same, with the faces' planarity kept in `planar` ([`Mesh::with_planar_faces`]).
+fn twisted_quad_and_wall_kept(band: u16, planar: Option<&[u32]>) -> Vec<u16> {
     let v = [
         [-1.5, -1.5, 0.0],
         [1.5, -1.5, 0.0],
@@ -31,7 +36,10 @@ fn twisted_quad_and_wall(band: u16) -> Vec<u16> {
         [-1.9, 1.9, 0.5],
     ];
     let (idx, off) = ((0..8).collect::<Vec<u32>>(), [0, 4, 8]);
-    let mesh = Mesh::new(&v, &idx, &off).unwrap();
+    let mut mesh = Mesh::new(&v, &idx, &off).unwrap();
+    if let Some(bits) = planar {
+        mesh = mesh.with_planar_faces(bits).unwrap();
+    }
     let mut weld = vec![0u32; v.len()];
     let mut scratch = vec![HalfEdgeRecord::default(); idx.len()];
     let mut store = vec![MeshEdge::default(); idx.len()];
@@ -122,6 +130,57 @@ fn a_twisted_quad_in_front_of_a_wall_showed_the_wall_through_its_raised_half() {
         for (i, j) in [(20, 20), (27, 4), (4, 27), (13, 13)] {
             assert_eq!(at(i, j), 1, "pixel ({i}, {j}), band {band}");
         }
+    }
+}
+
+/// Planarity kept per mesh is read in place of the test in every frame: the bits
+/// `planar_faces` makes (the quad not planar, the wall planar) draw the same frame as
+/// none kept, and bits calling the quad planar give it its single plane, which puts
+/// the wall in front of its raised half.
+#[test]
+fn planarity_kept_per_mesh_draws_the_same_frame_and_is_what_is_read() {
+    let v = [
+        [-1.5, -1.5, 0.0],
+        [1.5, -1.5, 0.0],
+        [1.5, 1.5, 0.0],
+        [-1.5, 1.5, 1.0],
+        [-1.9, 0.5, 0.5],
+        [-0.5, 0.5, 0.5],
+        [-0.5, 1.9, 0.5],
+        [-1.9, 1.9, 0.5],
+    ];
+    let (idx, off) = ((0..8).collect::<Vec<u32>>(), [0, 4, 8]);
+    let mesh = Mesh::new(&v, &idx, &off).unwrap();
+    let mut bits = [u32::MAX; 2];
+    assert_eq!(crate::order::planar_faces(&mesh, &mut bits), Ok(1));
+    assert_eq!(
+        bits,
+        [0b10, u32::MAX],
+        "the wall planar, the quad not; word 2 untouched"
+    );
+    assert_eq!(
+        crate::order::planar_faces(&mesh, &mut []),
+        Err(crate::Error::CapacityExceeded {
+            needed: 1,
+            capacity: 0
+        })
+    );
+    assert_eq!(
+        mesh.with_planar_faces(&[]).map(|_| ()),
+        Err(crate::Error::CapacityExceeded {
+            needed: 1,
+            capacity: 0
+        })
+    );
+    for band in [32, 5] {
+        let tested = twisted_quad_and_wall(band);
+        assert_eq!(twisted_quad_and_wall_kept(band, Some(&bits[..1])), tested);
+        let wrong = twisted_quad_and_wall_kept(band, Some(&[0b11]));
+        // Pixel (5, 5): the raised half in front of the wall, or behind it as a plane.
+        assert_eq!(tested[5 * 32 + 5], 1, "band {band}");
+        assert_eq!(wrong[5 * 32 + 5], 2, "band {band}");
+        let differ = wrong.iter().zip(&tested).filter(|(a, b)| a != b).count();
+        assert!(differ >= 20, "band {band}: {differ} pixels differ");
     }
 }
 

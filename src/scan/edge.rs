@@ -156,6 +156,14 @@ impl Edge {
         winding: 0,
     };
 
+    /// All zero: room for an edge not set up yet, so that a `static` holding such
+    /// rooms lands in `.bss` (not in `.data`, which costs flash too). It crosses no
+    /// row either, and stepping it divides by nothing.
+    pub(crate) const UNSET: Self = Self {
+        dy: 0,
+        ..Self::ZERO
+    };
+
     /// Sets up the DDA at the first visible row. Only for edges whose endpoints lie
     /// inside the guard band (see the module docs for why nothing overflows).
     pub fn new(line: &EdgeLine, clipped: Clipped, s: u32) -> Option<Self> {

@@ -33,12 +33,14 @@ fn addr(p: *const u8) -> usize {
     p as usize
 }
 
-/// Static RAM (.data + .bss) and flash (.text + .rodata) from the linker's symbols.
+/// Static RAM (.data + .bss) and flash (.text + .rodata + .data's initial values,
+/// copied from flash at reset) from the linker's symbols.
 pub fn sizes() -> (usize, usize) {
-    let ram = addr(addr_of!(__edata)) - addr(addr_of!(__sdata)) + addr(addr_of!(__ebss))
-        - addr(addr_of!(__sbss));
+    let data = addr(addr_of!(__edata)) - addr(addr_of!(__sdata));
+    let ram = data + addr(addr_of!(__ebss)) - addr(addr_of!(__sbss));
     let flash = addr(addr_of!(__etext)) - addr(addr_of!(__stext)) + addr(addr_of!(__erodata))
-        - addr(addr_of!(__srodata));
+        - addr(addr_of!(__srodata))
+        + data;
     (ram, flash)
 }
 

@@ -232,6 +232,18 @@ impl<
     }
 }
 
+/// A face slot no face has taken since the engine was made (all zero).
+const UNUSED_SLOT: ActiveFace = ActiveFace {
+    id: 0,
+    bit: 0,
+    pos: 0,
+    rank: 0,
+    fold: false,
+    bend: 0,
+    end: 0,
+    plane: RowPlane::ZERO,
+};
+
 const NO_FACE: ActiveFace = ActiveFace {
     id: 0,
     bit: NO_BIT,
@@ -275,7 +287,10 @@ impl<
     /// Empty working memory.
     pub const fn new() -> Self {
         Self {
-            faces: [NO_FACE; FACES],
+            // All zero, so that a `static` engine lands in `.bss`, not in `.data`
+            // (which costs its size in flash too): a slot is written whole when a face
+            // takes it (`add_surface`) before anything reads it.
+            faces: [UNUSED_SLOT; FACES],
             live: Vec::new(),
             free: Vec::new(),
             edges: ActiveEdges::new(),

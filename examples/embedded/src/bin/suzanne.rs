@@ -35,7 +35,9 @@ fn main() -> ! {
             &mut *addr_of_mut!(ENGINE),
         )
     };
+    // Which faces are planar was found on the host (build.rs) and stays in flash.
     let mesh = Mesh::new(&suzanne::VERTICES, &suzanne::INDICES, &suzanne::OFFSETS)
+        .and_then(|mesh| mesh.with_planar_faces(&suzanne::PLANAR))
         .unwrap_or_else(|e| fw::fail(NAME, &e));
     // The edge list was built on the host (build.rs) and stays in flash.
     let edges = EdgeAdjacency::from_edges(&mesh, &suzanne::EDGE_LIST)
