@@ -279,12 +279,12 @@ impl<'p, G: GreyPalette, const POLY: usize> GreyCompose<'p, G, POLY> {
                 let p = vertices
                     .get(v as usize)
                     .map_or(ProjectedVertex::default(), |p| *p);
-                outside |= p.outside;
+                outside |= p.outside();
                 b = [
-                    b[0].min(p.screen.x),
-                    b[1].min(p.screen.y),
-                    b[2].max(p.screen.x),
-                    b[3].max(p.screen.y),
+                    b[0].min(p.screen().x),
+                    b[1].min(p.screen().y),
+                    b[2].max(p.screen().x),
+                    b[3].max(p.screen().y),
                 ];
             }
             let small = b[2].saturating_sub(b[0]) < thin || b[3].saturating_sub(b[1]) < thin;

@@ -283,15 +283,18 @@ pub(crate) fn edge_on_screen(
         vertices.get(edge.a as usize)?,
         vertices.get(edge.b as usize)?,
     );
-    if pa.outside & pb.outside != 0 {
+    let (oa, ob) = (pa.outside(), pb.outside());
+    if oa & ob != 0 {
         return None;
     }
-    if pa.outside | pb.outside == 0 {
-        return Some((pa.screen, pb.screen));
+    if oa | ob == 0 {
+        return Some((pa.screen(), pb.screen()));
     }
-    let (first, last) = ctx
-        .view
-        .clip_segment(pa.clip, pb.clip, pa.outside | pb.outside)?;
+    let (ca, cb) = (
+        ctx.clip_of(vertices, edge.a)?,
+        ctx.clip_of(vertices, edge.b)?,
+    );
+    let (first, last) = ctx.view.clip_segment(ca, cb, oa | ob)?;
     Some((ctx.view.project(&first), ctx.view.project(&last)))
 }
 

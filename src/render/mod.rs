@@ -199,10 +199,21 @@ fn need(needed: usize, capacity: usize) -> Result<(), Error> {
 /// One frame's fixed inputs, shared by the band passes.
 struct FrameCtx<'f, 'm> {
     mesh: &'f Mesh<'m>,
+    /// The world positions the vertex cache was made from.
+    positions: &'f [[f32; 3]],
     view: FixedView,
     s: u32,
     viewport: Viewport,
     viewpoint: Viewpoint,
+}
+
+impl FrameCtx<'_, '_> {
+    /// Clip coordinates of vertex `v` of the cache `vertices`.
+    fn clip_of(&self, vertices: &[ProjectedVertex], v: u32) -> Option<ClipVertex> {
+        let p = vertices.get(v as usize)?;
+        let position = self.positions.get(v as usize).copied().unwrap_or_default();
+        Some(p.clip(&self.view, position))
+    }
 }
 
 /// Rows per band that `samples` lent id (and depth) samples and `line_words` lent
@@ -234,7 +245,7 @@ fn band_rows(viewport: Viewport, samples: usize, line_words: usize) -> Result<u1
 #[allow(clippy::too_many_arguments)]
 fn begin_frame<'f, 'm>(
     mesh: &'f Mesh<'m>,
-    positions: &[[f32; 3]],
+    positions: &'f [[f32; 3]],
     edges: &EdgeAdjacency<'_>,
     camera: &Camera,
     settings: &Settings,
@@ -255,18 +266,7 @@ fn begin_frame<'f, 'm>(
         .fold(0.0f32, |m, c| m.max(c.abs()));
     let view = FixedView::new(camera, max_abs, viewport.width, viewport.height, s)?;
     for (slot, p) in vertices.iter_mut().zip(positions) {
-        let clip = view.clip(*p);
-        let outside = view.outcode(&clip);
-        let screen = if outside == 0 {
-            view.project(&clip)
-        } else {
-            ScreenVertex::default()
-        };
-        *slot = ProjectedVertex {
-            clip,
-            screen,
-            outside,
-        };
+        *slot = ProjectedVertex::new(&view, *p);
     }
     let viewpoint = camera.viewpoint();
     let cull = match settings.cull {
@@ -279,7 +279,7 @@ fn begin_frame<'f, 'm>(
         let on = !cull || mesh.faces_viewpoint(f, &viewpoint);
         set_bit(drawn, f, on);
         let common = mesh.face(f).iter().fold(0xFF, |acc, &v| {
-            acc & vertices.get(v as usize).map_or(0, |p| p.outside)
+            acc & vertices.get(v as usize).map_or(0, ProjectedVertex::outside)
         });
         if on && common == 0 {
             stats.faces_drawn += 1;
@@ -292,6 +292,7 @@ fn begin_frame<'f, 'm>(
     }
     Ok(FrameCtx {
         mesh,
+        positions,
         view,
         s,
         viewport,
@@ -320,7 +321,9 @@ fn index_polygon<const POLY: usize>(
     out.clear();
     let (mut any, mut all) = (0u8, 0xFFu8);
     for &v in idx {
-        let o = vertices.get(v as usize).map_or(0xFF, |p| p.outside);
+        let o = vertices
+            .get(v as usize)
+            .map_or(0xFF, ProjectedVertex::outside);
         any |= o;
         all &= o;
     }
@@ -331,7 +334,7 @@ fn index_polygon<const POLY: usize>(
         need(idx.len(), POLY)?;
         for &v in idx {
             if let Some(p) = vertices.get(v as usize) {
-                let _ = out.push(p.screen);
+                let _ = out.push(p.screen());
             }
         }
         return Ok(true);
@@ -339,8 +342,8 @@ fn index_polygon<const POLY: usize>(
     let mut clip: Vec<ClipVertex, POLY> = Vec::new();
     need(idx.len(), POLY)?;
     for &v in idx {
-        if let Some(p) = vertices.get(v as usize) {
-            let _ = clip.push(p.clip);
+        if let Some(c) = ctx.clip_of(vertices, v) {
+            let _ = clip.push(c);
         }
     }
     ctx.view.clip_polygon(&mut clip, any)?;

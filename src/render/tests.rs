@@ -138,6 +138,46 @@ fn render(
     (fb.as_bytes().to_vec(), masks)
 }
 
+/// The vertex cache keeps a projection or clip coordinates, not both (16 bytes a
+/// vertex; it was 28 with both): an inside vertex's clip coordinates are made again
+/// from its position, the same integers, and an outside vertex keeps its own and
+/// has no projection.
+#[test]
+fn a_cached_vertex_keeps_its_projection_or_its_clip_coordinates_in_16_bytes() {
+    assert_eq!(size_of::<ProjectedVertex>(), 16);
+    let projection = Projection::Perspective { fov_y_deg: 40.0 };
+    let camera = Camera::new(
+        [0.0, 0.0, 6.0],
+        [0.0; 3],
+        [0.0, 1.0, 0.0],
+        projection,
+        0.5,
+        20.0,
+    );
+    let view = FixedView::new(&camera.unwrap(), 25.0, 96, 64, 4).unwrap();
+    let (mut inside, mut outside) = (0, 0);
+    // A line from behind the eye to beyond the far plane: both clipped.
+    for k in 0..=60 {
+        let t = k as f32 / 2.0;
+        let p = [0.2 * t, 0.1, 8.0 - t];
+        let clip = view.clip(p);
+        let v = ProjectedVertex::new(&view, p);
+        assert_eq!(v.outside(), view.outcode(&clip), "{p:?}");
+        assert_eq!(v.clip(&view, p), clip, "{p:?}");
+        if v.outside() == 0 {
+            assert_eq!(v.screen(), view.project(&clip), "{p:?}");
+            inside += 1;
+        } else {
+            assert_eq!(v.screen(), ScreenVertex::default(), "{p:?}");
+            outside += 1;
+        }
+    }
+    assert!(
+        inside > 5 && outside > 5,
+        "{inside} inside, {outside} outside"
+    );
+}
+
 /// The k-th of n viewpoints spread over a sphere of radius 6 (golden-angle spiral).
 fn viewpoint(k: u32, n: u32) -> Camera {
     let z = 1.0 - 2.0 * (k as f32 + 0.5) / n as f32;
@@ -194,25 +234,11 @@ fn convex_solids_never_draw_a_visible_edge_pixel_dashed() {
             let (_, masks) = render(&mesh, &adj, &camera, 16, DrawMode::Dashed);
             // Walk every visible edge with the renderer's own rasterization.
             let view = FixedView::new(&camera, 1.7, 96, 64, 4).unwrap();
-            let cache: Vec<ProjectedVertex> = v
-                .iter()
-                .map(|p| {
-                    let clip = view.clip(*p);
-                    let outside = view.outcode(&clip);
-                    let screen = if outside == 0 {
-                        view.project(&clip)
-                    } else {
-                        ScreenVertex::default()
-                    };
-                    ProjectedVertex {
-                        clip,
-                        screen,
-                        outside,
-                    }
-                })
-                .collect();
+            let cache: Vec<ProjectedVertex> =
+                v.iter().map(|p| ProjectedVertex::new(&view, *p)).collect();
             let ctx = FrameCtx {
                 mesh: &mesh,
+                positions: &v,
                 view,
                 s: 4,
                 viewport: Viewport {

@@ -38,16 +38,64 @@ pub struct ScreenVertex {
     pub q: u32,
 }
 
-/// One vertex of the per-frame vertex cache.
+/// One vertex of the per-frame vertex cache, 16 bytes: its projection when it is
+/// inside the view volume, else its clip coordinates, which clipping needs. (An
+/// inside vertex's clip coordinates, needed where an edge or face beside it is
+/// clipped, are made again from its position: the same integers.)
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct ProjectedVertex {
-    /// Clip coordinates.
-    pub clip: ClipVertex,
-    /// Projection, valid when `outside == 0`.
-    pub screen: ScreenVertex,
+    /// Screen `x`, `y` and the bits of `q` when `outside == 0`, else clip `x`, `y`, `z`.
+    coords: [i32; 3],
     /// One bit per clip plane the vertex is outside of.
-    pub outside: u8,
+    outside: u8,
+}
+
+impl ProjectedVertex {
+    /// All zero, for lent buffers (a `static` of them is `.bss`).
+    pub const ZERO: Self = Self {
+        coords: [0; 3],
+        outside: 0,
+    };
+
+    /// The vertex at world position `p` in `view`.
+    pub(crate) fn new(view: &FixedView, p: [f32; 3]) -> Self {
+        let clip = view.clip(p);
+        let outside = view.outcode(&clip);
+        let coords = if outside == 0 {
+            let v = view.project(&clip);
+            [v.x, v.y, v.q as i32]
+        } else {
+            [clip.x, clip.y, clip.z]
+        };
+        Self { coords, outside }
+    }
+
+    /// One bit per clip plane (near, far, then the guard band's four sides) the
+    /// vertex is outside of; 0 inside the view volume.
+    pub fn outside(&self) -> u8 {
+        self.outside
+    }
+
+    /// Its projection; all zero for a vertex outside the view volume (see
+    /// [`Self::outside`]), which has none.
+    pub fn screen(&self) -> ScreenVertex {
+        if self.outside != 0 {
+            return ScreenVertex::default();
+        }
+        let [x, y, q] = self.coords;
+        ScreenVertex { x, y, q: q as u32 }
+    }
+
+    /// Its clip coordinates: kept for a vertex outside the view volume, made again
+    /// from its world position `p` for one inside.
+    pub(crate) fn clip(&self, view: &FixedView, p: [f32; 3]) -> ClipVertex {
+        if self.outside == 0 {
+            return view.clip(p);
+        }
+        let [x, y, z] = self.coords;
+        ClipVertex { x, y, z }
+    }
 }
 
 /// Planes, in clipping order: near, far, then the guard band's four sides.

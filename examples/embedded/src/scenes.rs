@@ -7,7 +7,7 @@ use core::convert::Infallible;
 
 use fixed::types::extra::U4;
 use pbuffer::mesh::{EdgeAdjacency, Mesh};
-use pbuffer::render::{ClipVertex, ProjectedVertex, ScreenVertex};
+use pbuffer::render::ProjectedVertex;
 use pbuffer::{
     Camera, CodeFillRenderer, CodeWorkspace, Cull, DrawMode, Error, MonoPalette, Pattern,
     Projection, Settings, SpanSink, Stats,
@@ -164,11 +164,7 @@ pub mod panel {
 }
 
 /// A zero vertex, for `static` buffers.
-pub const ZERO_VERTEX: ProjectedVertex = ProjectedVertex {
-    clip: ClipVertex { x: 0, y: 0, z: 0 },
-    screen: ScreenVertex { x: 0, y: 0, q: 0 },
-    outside: 0,
-};
+pub const ZERO_VERTEX: ProjectedVertex = ProjectedVertex::ZERO;
 
 /// Words of a bitset of `n` bits.
 pub const fn words(n: usize) -> usize {

@@ -104,7 +104,9 @@ fn library_nearness(near: f64, far: f64) -> Result<(Vec<f64>, Vec<u32>), String>
             &mut (),
         )
         .map_err(|e| format!("render: {e}"))?;
-    let q = (0..SAMPLES).map(|i| ws.vertices[3 * i].screen.q).collect();
+    let q = (0..SAMPLES)
+        .map(|i| ws.vertices[3 * i].screen().q)
+        .collect();
     Ok((dists, q))
 }
 

@@ -510,12 +510,14 @@ impl<
             }
             let idx = fill.mesh.face(f);
             let outside = idx.iter().fold(0, |acc, &v| {
-                acc | vertices.get(v as usize).map_or(0xFF, |p| p.outside)
+                acc | vertices
+                    .get(v as usize)
+                    .map_or(0xFF, ProjectedVertex::outside)
             });
             let rows = if outside == 0 {
                 let ys = idx
                     .iter()
-                    .filter_map(|&v| vertices.get(v as usize).map(|p| p.screen.y));
+                    .filter_map(|&v| vertices.get(v as usize).map(|p| p.screen().y));
                 row_span(ctx.s, ys)
             } else if index_polygon(ctx, vertices, idx, &mut poly)? {
                 row_span(ctx.s, poly.iter().map(|v| v.y))

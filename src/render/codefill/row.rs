@@ -295,7 +295,8 @@ impl<
                 // corners left bound nothing: it is always asked.
                 if takes_fan_depth(fill.mesh, f, &poly, &plane) {
                     let corners = fill.mesh.face(f);
-                    let seen = |v: &u32| vertices.get(*v as usize).is_some_and(|p| p.outside == 0);
+                    let seen =
+                        |v: &u32| vertices.get(*v as usize).is_some_and(|p| p.outside() == 0);
                     face.bend = if corners.iter().all(seen) {
                         bend(&poly, &plane)
                     } else {

@@ -284,7 +284,7 @@ impl<const POLY: usize> IdPass for Cast<'_, POLY> {
                 .mesh
                 .face(f)
                 .iter()
-                .any(|&v| vertices.get(v as usize).is_none_or(|p| p.outside != 0));
+                .any(|&v| vertices.get(v as usize).is_none_or(|p| p.outside() != 0));
             let capacity = self.faces.len();
             let slot = self.faces.get_mut(n).ok_or(Error::CapacityExceeded {
                 needed: n + 1,

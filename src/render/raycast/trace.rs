@@ -139,7 +139,7 @@ impl<const POLY: usize> Cast<'_, POLY> {
             poly.clear();
             for &v in ctx.mesh.face(f) {
                 if let Some(p) = vertices.get(v as usize) {
-                    let _ = poly.push(p.screen);
+                    let _ = poly.push(p.screen());
                 }
             }
         }

@@ -246,7 +246,7 @@ impl<const POLY: usize> IdPass for Subdivide<'_, POLY> {
                 .mesh
                 .face(f)
                 .iter()
-                .all(|&v| vertices.get(v as usize).is_some_and(|p| p.outside == 0))
+                .all(|&v| vertices.get(v as usize).is_some_and(|p| p.outside() == 0))
             {
                 bend(&poly, &plane).saturating_add(ROUNDING)
             } else {
