@@ -260,8 +260,10 @@ pub(crate) struct RowPlane {
     row_q: i64,
     dq_dx: i64,
     dq_dy: i64,
-    q_min: i64,
-    q_max: i64,
+    /// The vertices' range of nearness, as 32-bit samples (the plane's own range is
+    /// these shifted by `STEP_BITS`: clamping before or after the shift is the same).
+    q_min: u32,
+    q_max: u32,
 }
 
 impl RowPlane {
@@ -283,7 +285,7 @@ impl RowPlane {
         let q = self
             .row_q
             .wrapping_add(self.dq_dx.wrapping_mul(i64::from(x)));
-        (q.clamp(self.q_min, self.q_max) >> STEP_BITS) as u32
+        self.sample(q)
     }
 
     /// Moves to the next row.
@@ -301,13 +303,19 @@ impl RowPlane {
             .row_q
             .wrapping_add(self.dq_dy.wrapping_mul(i64::from(y)))
             .wrapping_add(self.dq_dx.wrapping_mul(i64::from(x)));
-        (q.clamp(self.q_min, self.q_max) >> STEP_BITS) as u32
+        self.sample(q)
     }
 
     /// The largest nearness the plane takes anywhere (its vertices' largest).
     #[inline]
     pub fn max_q(&self) -> u32 {
-        (self.q_max >> STEP_BITS) as u32
+        self.q_max
+    }
+
+    /// The 32-bit sample of plane value `q`, clamped to the vertices' range.
+    #[inline(always)]
+    fn sample(&self, q: i64) -> u32 {
+        (q >> STEP_BITS).clamp(i64::from(self.q_min), i64::from(self.q_max)) as u32
     }
 
     /// Depth-tests pixels `x0..x1` of row `y` of `band` for face `id` with this
@@ -331,7 +339,7 @@ impl RowPlane {
             .wrapping_add(self.dq_dy.wrapping_mul(i64::from(y)))
             .wrapping_add(self.dq_dx.wrapping_mul(i64::from(x0)));
         for (d, held) in depth.iter_mut().zip(ids.iter_mut()) {
-            let q = D::from_q((acc.clamp(self.q_min, self.q_max) >> STEP_BITS) as u32);
+            let q = D::from_q(self.sample(acc));
             let margin = if *held == id { 0 } else { self.tie };
             if *held == 0 || q.to_q() > d.to_q().saturating_add(margin) {
                 *d = q;
@@ -350,8 +358,8 @@ impl DepthPlane {
             row_q: self.at_pixel(0, y),
             dq_dx: self.dq_dx,
             dq_dy: self.dq_dy,
-            q_min: self.q_min,
-            q_max: self.q_max,
+            q_min: (self.q_min >> STEP_BITS) as u32,
+            q_max: (self.q_max >> STEP_BITS) as u32,
         }
     }
 }
