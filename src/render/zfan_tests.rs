@@ -15,6 +15,18 @@ use crate::render::{
 };
 use crate::{Pattern, Projection};
 
+/// The vertices of [`twisted_quad_and_wall`]'s two faces (0..4 and 4..8).
+const QUAD_AND_WALL: [[f32; 3]; 8] = [
+    [-1.5, -1.5, 0.0],
+    [1.5, -1.5, 0.0],
+    [1.5, 1.5, 0.0],
+    [-1.5, 1.5, 1.0],
+    [-1.9, 0.5, 0.5],
+    [-0.5, 0.5, 0.5],
+    [-0.5, 1.9, 0.5],
+    [-1.9, 1.9, 0.5],
+];
+
 /// Face 0, a quad twisted about its diagonal v0-v2: fan triangle (v0, v1, v2) lies in
 /// z = 0, (v0, v2, v3) rises to z = 1 at v3, in the plane z = (y - x) / 3. Face 1, a
 /// square wall at z = 0.5 over the corner v3. Seen from +z (orthographic, 8 px per
@@ -25,16 +37,7 @@ fn twisted_quad_and_wall(band: u16) -> Vec<u16> {
 
 /// The same, with the faces' planarity kept in `planar` ([`Mesh::with_planar_faces`]).
 fn twisted_quad_and_wall_kept(band: u16, planar: Option<&[u32]>) -> Vec<u16> {
-    let v = [
-        [-1.5, -1.5, 0.0],
-        [1.5, -1.5, 0.0],
-        [1.5, 1.5, 0.0],
-        [-1.5, 1.5, 1.0],
-        [-1.9, 0.5, 0.5],
-        [-0.5, 0.5, 0.5],
-        [-0.5, 1.9, 0.5],
-        [-1.9, 1.9, 0.5],
-    ];
+    let v = QUAD_AND_WALL;
     let (idx, off) = ((0..8).collect::<Vec<u32>>(), [0, 4, 8]);
     let mut mesh = Mesh::new(&v, &idx, &off).unwrap();
     if let Some(bits) = planar {
@@ -139,16 +142,7 @@ fn a_twisted_quad_in_front_of_a_wall_showed_the_wall_through_its_raised_half() {
 /// the wall in front of its raised half.
 #[test]
 fn planarity_kept_per_mesh_draws_the_same_frame_and_is_what_is_read() {
-    let v = [
-        [-1.5, -1.5, 0.0],
-        [1.5, -1.5, 0.0],
-        [1.5, 1.5, 0.0],
-        [-1.5, 1.5, 1.0],
-        [-1.9, 0.5, 0.5],
-        [-0.5, 0.5, 0.5],
-        [-0.5, 1.9, 0.5],
-        [-1.9, 1.9, 0.5],
-    ];
+    let v = QUAD_AND_WALL;
     let (idx, off) = ((0..8).collect::<Vec<u32>>(), [0, 4, 8]);
     let mesh = Mesh::new(&v, &idx, &off).unwrap();
     let mut bits = [u32::MAX; 2];
