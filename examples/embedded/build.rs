@@ -46,18 +46,18 @@ fn main() {
         m.offsets.len(),
         m.offsets
     );
-    write_edge_list(&mut s, &m);
-    write_planar_faces(&mut s, &m);
+    let mesh = Mesh::new(&m.vertices, &m.indices, &m.offsets).expect("suzanne is a valid mesh");
+    write_edge_list(&mut s, &mesh);
+    write_planar_faces(&mut s, &mesh);
     fs::write(out.join("suzanne.rs"), s).expect("write suzanne.rs");
 }
 
 /// Appends `PLANAR`: which faces are planar, as `pbuffer::order::planar_faces` finds
 /// them here, for `Mesh::with_planar_faces` (the firmware then tests no face's
 /// planarity per frame: a test in f64, in software on the Cortex-M4).
-fn write_planar_faces(s: &mut String, m: &obj::ObjMesh) {
-    let mesh = Mesh::new(&m.vertices, &m.indices, &m.offsets).expect("suzanne is a valid mesh");
+fn write_planar_faces(s: &mut String, mesh: &Mesh<'_>) {
     let mut bits = vec![0u32; pbuffer::mesh::planar_words(mesh.face_count())];
-    pbuffer::order::planar_faces(&mesh, &mut bits).expect("sized by planar_words");
+    pbuffer::order::planar_faces(mesh, &mut bits).expect("sized by planar_words");
     let _ = writeln!(
         s,
         "/// Which faces are planar (bit f % 32 of word f / 32), made on the host by\n\
@@ -70,12 +70,11 @@ fn write_planar_faces(s: &mut String, m: &obj::ObjMesh) {
 
 /// Appends `EDGE_LIST`: the mesh's edges as `EdgeAdjacency::build` makes them at 30
 /// degrees (the firmware's crease angle), for `EdgeAdjacency::from_edges`.
-fn write_edge_list(s: &mut String, m: &obj::ObjMesh) {
-    let mesh = Mesh::new(&m.vertices, &m.indices, &m.offsets).expect("suzanne is a valid mesh");
-    let mut weld = vec![0u32; m.vertices.len()];
-    let mut scratch = vec![HalfEdgeRecord::EMPTY; m.indices.len()];
-    let mut out = vec![MeshEdge::EMPTY; m.indices.len()];
-    let adjacency = EdgeAdjacency::build(&mesh, 30.0, &mut weld, &mut scratch, &mut out)
+fn write_edge_list(s: &mut String, mesh: &Mesh<'_>) {
+    let mut weld = vec![0u32; mesh.vertices().len()];
+    let mut scratch = vec![HalfEdgeRecord::EMPTY; mesh.indices().len()];
+    let mut out = vec![MeshEdge::EMPTY; mesh.indices().len()];
+    let adjacency = EdgeAdjacency::build(mesh, 30.0, &mut weld, &mut scratch, &mut out)
         .expect("storage for every corner suffices");
     let edges = adjacency.edges();
     let _ = writeln!(

@@ -39,8 +39,9 @@ impl SceneStorage {
         }
     }
 
-    /// The library mesh (its faces' planarity kept), its adjacency (crease angle `spec.crease_deg`), the camera of
-    /// `cam` and the settings of `spec`, in that order (the first error is returned).
+    /// The library mesh (its faces' planarity kept), its adjacency (crease angle
+    /// `spec.crease_deg`), the camera of `cam` and the settings of `spec`, in that
+    /// order (the first error is returned).
     pub fn scene(&mut self, cam: &CameraSpec, spec: &RenderSpec) -> Result<Scene<'_>, String> {
         let arrays = &self.arrays;
         let mesh = Mesh::new(&arrays.vertices, &arrays.indices, &arrays.offsets)

@@ -146,8 +146,7 @@ impl<'a> Mesh<'a> {
     /// Whether face `f` is planar, from the bits kept by [`Mesh::with_planar_faces`];
     /// `None` when none are kept.
     pub(crate) fn kept_planarity(&self, f: usize) -> Option<bool> {
-        let word = self.planar?.get(f / 32)?;
-        Some(word & (1 << (f % 32)) != 0)
+        self.planar.map(|bits| bit(bits, f))
     }
 
     /// The vertex positions.
@@ -246,6 +245,23 @@ impl<'a> Mesh<'a> {
     /// positions weld. `None` when there is no such vertex.
     pub(crate) fn position_bits(&self, i: u32) -> Option<[u32; 3]> {
         self.vertices.get(i as usize).map(|p| p.map(f32::to_bits))
+    }
+}
+
+/// Bit `i` of a bitset of words (bit `i % 32` of word `i / 32`): a face's or an
+/// edge's flag; false beyond the words.
+pub(crate) fn bit(bits: &[u32], i: usize) -> bool {
+    bits.get(i / 32).is_some_and(|w| w & (1 << (i % 32)) != 0)
+}
+
+/// Sets bit `i` of a bitset to `on` (nothing beyond the words).
+pub(crate) fn set_bit(bits: &mut [u32], i: usize, on: bool) {
+    if let Some(w) = bits.get_mut(i / 32) {
+        if on {
+            *w |= 1 << (i % 32);
+        } else {
+            *w &= !(1 << (i % 32));
+        }
     }
 }
 

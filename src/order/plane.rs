@@ -1,6 +1,6 @@
 //! Planes, vertex classification and the work-stack records of the BSP build (f64).
 
-use crate::mesh::{planar_words, Mesh};
+use crate::mesh::{planar_words, set_bit, Mesh};
 use crate::Error;
 
 /// Where a vertex lies relative to a plane, with the build's tolerance.
@@ -316,9 +316,7 @@ pub fn planar_faces(mesh: &Mesh<'_>, bits: &mut [u32]) -> Result<usize, Error> {
     };
     words.fill(0);
     for face in 0..mesh.face_count() {
-        if let Some(word) = words.get_mut(face / 32) {
-            *word |= u32::from(test_planar(mesh, face)) << (face % 32);
-        }
+        set_bit(words, face, test_planar(mesh, face));
     }
     Ok(needed)
 }

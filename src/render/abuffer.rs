@@ -280,12 +280,8 @@ impl<'p, G: GreyPalette, const POLY: usize> GreyCompose<'p, G, POLY> {
                     .get(v as usize)
                     .map_or(ProjectedVertex::default(), |p| *p);
                 outside |= p.outside();
-                b = [
-                    b[0].min(p.screen().x),
-                    b[1].min(p.screen().y),
-                    b[2].max(p.screen().x),
-                    b[3].max(p.screen().y),
-                ];
+                let s = p.screen();
+                b = [b[0].min(s.x), b[1].min(s.y), b[2].max(s.x), b[3].max(s.y)];
             }
             let small = b[2].saturating_sub(b[0]) < thin || b[3].saturating_sub(b[1]) < thin;
             if outside == 0 && small && b[3] > band_lo && b[1] < band_hi {

@@ -62,7 +62,7 @@ pub(crate) fn folded(corners: &[u32], vertices: &[ProjectedVertex]) -> bool {
     }
     let at = |k: usize| {
         let p = corners.get(k % n).and_then(|&v| vertices.get(v as usize))?;
-        (p.outside() == 0).then_some((i64::from(p.screen().x), i64::from(p.screen().y)))
+        p.projection().map(|s| (i64::from(s.x), i64::from(s.y)))
     };
     let sign = |a: (i64, i64), b: (i64, i64), c: (i64, i64)| {
         ((b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0)).signum()

@@ -48,7 +48,7 @@ pub use zband::Depth;
 pub use zbuffer::ZBufferRenderer;
 
 use crate::camera::Camera;
-use crate::mesh::{EdgeAdjacency, Mesh, Viewpoint};
+use crate::mesh::{bit, set_bit, EdgeAdjacency, Mesh, Viewpoint};
 use crate::{Error, Pattern, Viewport};
 use transform::FixedView;
 use zband::IdBand;
@@ -174,21 +174,6 @@ pub struct Stats {
     pub peak_edges: u32,
 }
 
-/// Set a bit in a bitset.
-fn set_bit(bits: &mut [u32], i: usize, on: bool) {
-    if let Some(w) = bits.get_mut(i / 32) {
-        if on {
-            *w |= 1 << (i % 32);
-        } else {
-            *w &= !(1 << (i % 32));
-        }
-    }
-}
-
-fn bit(bits: &[u32], i: usize) -> bool {
-    bits.get(i / 32).is_some_and(|w| w & (1 << (i % 32)) != 0)
-}
-
 fn need(needed: usize, capacity: usize) -> Result<(), Error> {
     if needed > capacity {
         return Err(Error::CapacityExceeded { needed, capacity });
@@ -208,11 +193,12 @@ struct FrameCtx<'f, 'm> {
 }
 
 impl FrameCtx<'_, '_> {
-    /// Clip coordinates of vertex `v` of the cache `vertices`.
+    /// Clip coordinates of vertex `v` of the cache `vertices` (`None` for an index
+    /// past either, which a validated mesh does not have).
     fn clip_of(&self, vertices: &[ProjectedVertex], v: u32) -> Option<ClipVertex> {
         let p = vertices.get(v as usize)?;
-        let position = self.positions.get(v as usize).copied().unwrap_or_default();
-        Some(p.clip(&self.view, position))
+        let position = self.positions.get(v as usize)?;
+        Some(p.clip(&self.view, *position))
     }
 }
 

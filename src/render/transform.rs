@@ -87,6 +87,12 @@ impl ProjectedVertex {
         ScreenVertex { x, y, q: q as u32 }
     }
 
+    /// Its projection, `None` outside the view volume.
+    pub fn projection(&self) -> Option<ScreenVertex> {
+        let [x, y, q] = self.coords;
+        (self.outside == 0).then_some(ScreenVertex { x, y, q: q as u32 })
+    }
+
     /// Its clip coordinates: kept for a vertex outside the view volume, made again
     /// from its world position `p` for one inside.
     pub(crate) fn clip(&self, view: &FixedView, p: [f32; 3]) -> ClipVertex {

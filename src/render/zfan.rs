@@ -64,8 +64,7 @@ pub(crate) fn fan_corners<'a>(
     let corner = move |v: &u32| {
         vertices
             .get(*v as usize)
-            .filter(|p| p.outside() == 0)
-            .map(ProjectedVertex::screen)
+            .and_then(ProjectedVertex::projection)
     };
     let face = mesh.face(f);
     let v0 = face.first().and_then(corner);

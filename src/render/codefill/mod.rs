@@ -232,22 +232,14 @@ impl<
     }
 }
 
-/// A face slot no face has taken since the engine was made (all zero).
-const UNUSED_SLOT: ActiveFace = ActiveFace {
+/// No face (id 0), all zero: what an empty slot holds (so that a `static` engine
+/// lands in `.bss`, not in `.data`, which costs its size in flash too; a face writes
+/// its slot whole in `add_surface` before anything reads it), and what a lookup that
+/// misses gets.
+const NO_FACE: ActiveFace = ActiveFace {
     id: 0,
     bit: 0,
     pos: 0,
-    rank: 0,
-    fold: false,
-    bend: 0,
-    end: 0,
-    plane: RowPlane::ZERO,
-};
-
-const NO_FACE: ActiveFace = ActiveFace {
-    id: 0,
-    bit: NO_BIT,
-    pos: NO_BIT,
     rank: 0,
     fold: false,
     bend: 0,
@@ -287,10 +279,7 @@ impl<
     /// Empty working memory.
     pub const fn new() -> Self {
         Self {
-            // All zero, so that a `static` engine lands in `.bss`, not in `.data`
-            // (which costs its size in flash too): a slot is written whole when a face
-            // takes it (`add_surface`) before anything reads it.
-            faces: [UNUSED_SLOT; FACES],
+            faces: [NO_FACE; FACES],
             live: Vec::new(),
             free: Vec::new(),
             edges: ActiveEdges::new(),
