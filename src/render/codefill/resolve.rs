@@ -105,7 +105,7 @@ impl<
     /// at most once). A face that is not planar ([`ActiveFace::bend`]) takes the
     /// depth of its fan triangle at the pixel (with its plane's tie margin) where its
     /// plane, off by up to its bend, could decide otherwise.
-    // Indexing: n < 8 = by_id.len() before an insertion (checked), and i <= n; k < n.
+    // Indexing: n < 8 = cover.len() before an insertion (checked), and i <= n.
     #[allow(clippy::indexing_slicing)]
     pub(super) fn resolve_overlap(
         &self,
@@ -114,81 +114,53 @@ impl<
         xb: u16,
         out: &mut [u16],
     ) -> u32 {
-        // The covering faces in index order (insertion: a few faces), as slots of
-        // the face table.
-        let mut by_id = [(0u16, 0u16); 8];
+        // The covering faces in index order (insertion: a few faces).
+        let mut cover = [(0u16, &NO_FACE); 8];
         let mut n = 0;
         let mut fits = true;
         let mut bent = false;
-        self.each_covering(|slot, face| {
+        self.each_covering(|_, face| {
             bent |= face.bend > 0;
-            if n == by_id.len() {
+            if n == cover.len() {
                 fits = false;
                 return;
             }
             let mut i = n;
-            while i > 0 && by_id[i - 1].0 > face.id {
-                by_id[i] = by_id[i - 1];
+            while i > 0 && cover[i - 1].0 > face.id {
+                cover[i] = cover[i - 1];
                 i -= 1;
             }
-            by_id[i] = (face.id, slot);
+            cover[i] = (face.id, face);
             n += 1;
         });
-        let faces = &self.faces;
-        // Nearness and tie margin of `face` at pixel `x`: its fan triangle's nearness
-        // where `exact` and it has one there, else its plane's.
-        let depth = |face: &ActiveFace, x: u16, exact: bool| {
-            let fan = (exact && face.bend > 0)
-                .then(|| row.fan_depth(usize::from(face.id - 1), x))
-                .flatten();
-            (fan.unwrap_or_else(|| face.plane.at(x)), face.plane.tie)
-        };
+        let cover = &cover[..n];
         let winner = |x: u16| -> u16 {
-            let (mut best, mut q, mut after) = (0u16, 0u32, 0u16);
-            let mut take = |id: u16, (qf, tie): (u32, u32)| {
-                if best == 0 || qf > q.saturating_add(tie) {
-                    (best, q) = (id, qf);
-                }
-            };
-            if fits && !bent {
-                for &(id, slot) in by_id.iter().take(n) {
-                    if let Some(face) = faces.get(usize::from(slot)) {
-                        take(id, (face.plane.at(x), face.plane.tie));
+            if !fits {
+                return self.nearest_one_by_one(row, x);
+            }
+            let mut at = [0u32; 8];
+            for (q, (_, face)) in at.iter_mut().zip(cover) {
+                *q = face.plane.at(x);
+            }
+            // A fan triangle is within its face's bend of the plane (plus the
+            // rounding): where every gap to a bent face is wider than both bends and
+            // the tie, the planes decide as the fan triangles would.
+            if bent && !planes_decide(cover, &at) {
+                for (q, (id, face)) in at.iter_mut().zip(cover) {
+                    if face.bend > 0 {
+                        if let Some(fan) = row.fan_depth(usize::from(id - 1), x) {
+                            *q = fan;
+                        }
                     }
                 }
-                return best;
             }
-            if fits {
-                let face = |k: usize| faces.get(usize::from(by_id[k].1)).unwrap_or(&NO_FACE);
-                let mut at = [(0u32, 0u32); 8];
-                for (k, slot) in at.iter_mut().enumerate().take(n) {
-                    *slot = depth(face(k), x, false);
+            let (mut best, mut q) = (0u16, 0u32);
+            for (&qf, (id, face)) in at.iter().zip(cover) {
+                if best == 0 || qf > q.saturating_add(face.plane.tie) {
+                    (best, q) = (*id, qf);
                 }
-                // A fan triangle is within its face's bend of the plane (plus the
-                // rounding): where every gap to a bent face is wider than both bends
-                // and the tie, the planes decide as the fan triangles would.
-                if !planes_decide(&at[..n], |k| face(k).bend) {
-                    for (k, slot) in at.iter_mut().enumerate().take(n) {
-                        *slot = depth(face(k), x, true);
-                    }
-                }
-                for (k, &d) in at.iter().enumerate().take(n) {
-                    take(by_id[k].0, d);
-                }
-                return best;
             }
-            // More than eight faces: take them in index order one by one.
-            loop {
-                let mut next: Option<&ActiveFace> = None;
-                self.each_covering(|_, face| {
-                    if face.id > after && next.is_none_or(|f| face.id < f.id) {
-                        next = Some(face);
-                    }
-                });
-                let Some(face) = next else { return best };
-                after = face.id;
-                take(face.id, depth(face, x, true));
-            }
+            best
         };
         let mut runs = 0;
         let mut x = xa;
@@ -217,6 +189,30 @@ impl<
         runs
     }
 
+    /// The nearest face at pixel `x` when more faces cover it than
+    /// `resolve_overlap` holds: taken in index order one by one, each with the
+    /// depth of its fan triangle where it is not planar.
+    fn nearest_one_by_one(&self, row: &RowFaces<'_>, x: u16) -> u16 {
+        let (mut best, mut q, mut after) = (0u16, 0u32, 0u16);
+        loop {
+            let mut next: Option<&ActiveFace> = None;
+            self.each_covering(|_, face| {
+                if face.id > after && next.is_none_or(|f| face.id < f.id) {
+                    next = Some(face);
+                }
+            });
+            let Some(face) = next else { return best };
+            after = face.id;
+            let fan = (face.bend > 0)
+                .then(|| row.fan_depth(usize::from(face.id - 1), x))
+                .flatten();
+            let qf = fan.unwrap_or_else(|| face.plane.at(x));
+            if best == 0 || qf > q.saturating_add(face.plane.tie) {
+                (best, q) = (face.id, qf);
+            }
+        }
+    }
+
     /// Calls `f` on each face whose bit is set in the code, with its slot in the
     /// face table.
     // Indexing: trailing_zeros of a non-zero u32 is < 32 on [u16; 32].
@@ -233,15 +229,16 @@ impl<
     }
 }
 
-/// Whether the planes' depths `at` (nearness, tie margin) decide as any depths within
-/// `bend(k)` of them would: every gap between two faces, one of them bent, is wider
-/// than their bends, the larger tie and the rounding.
-fn planes_decide(at: &[(u32, u32)], bend: impl Fn(usize) -> u32) -> bool {
-    at.iter().enumerate().all(|(i, &(qi, ti))| {
-        at.iter().enumerate().skip(i + 1).all(|(j, &(qj, tj))| {
-            let bends = bend(i).saturating_add(bend(j));
-            bends == 0
-                || qi.abs_diff(qj) > bends.saturating_add(ti.max(tj)).saturating_add(ROUNDING)
+/// Whether the planes' depths `at` of the faces `cover` decide as any depths within
+/// their bends would: every gap between two faces, one of them bent, is wider than
+/// their bends, the larger tie and the rounding.
+fn planes_decide(cover: &[(u16, &ActiveFace)], at: &[u32]) -> bool {
+    let faces = cover.iter().zip(at);
+    faces.clone().enumerate().all(|(i, ((_, fi), &qi))| {
+        faces.clone().skip(i + 1).all(|((_, fj), &qj)| {
+            let bends = fi.bend.saturating_add(fj.bend);
+            let tie = fi.plane.tie.max(fj.plane.tie);
+            bends == 0 || qi.abs_diff(qj) > bends.saturating_add(tie).saturating_add(ROUNDING)
         })
     })
 }
