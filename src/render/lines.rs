@@ -202,37 +202,34 @@ impl Stepper {
 /// True when point (x, y) (half sub-pixel units) is inside `poly` by the even-odd
 /// rule (points exactly on an edge count as inside).
 pub(crate) fn polygon_contains(poly: &[ScreenVertex], x: i64, y: i64) -> bool {
-    let n = poly.len();
+    // Each edge (a, b), the closing one first: the parity does not depend on the
+    // order, and neither does the answer on an edge.
+    let Some(mut a) = poly.last() else {
+        return false;
+    };
     let mut inside = false;
-    for i in 0..n {
-        let (Some(a), Some(b)) = (poly.get(i), poly.get((i + 1) % n)) else {
-            continue;
-        };
-        let (ax, ay, bx, by) = (
-            2 * i64::from(a.x),
-            2 * i64::from(a.y),
-            2 * i64::from(b.x),
-            2 * i64::from(b.y),
-        );
-        if (ay <= y) == (by <= y) {
-            continue;
+    for b in poly {
+        let (ay, by) = (2 * i64::from(a.y), 2 * i64::from(b.y));
+        if (ay <= y) != (by <= y) {
+            let (ax, bx) = (2 * i64::from(a.x), 2 * i64::from(b.x));
+            // Orientation of the point against the edge, taken upward.
+            let (lx, ly, hx, hy) = if ay < by {
+                (ax, ay, bx, by)
+            } else {
+                (bx, by, ax, ay)
+            };
+            // Inside the guard band every difference is below 2^28 half-units:
+            // 32-bit factors with a 64-bit product (one multiply on a Cortex-M4).
+            let wide = |a: i64, b: i64| i64::from(a as i32) * i64::from(b as i32);
+            let cross = wide(hx - lx, y - ly) - wide(hy - ly, x - lx);
+            if cross == 0 {
+                return true;
+            }
+            if cross > 0 {
+                inside = !inside;
+            }
         }
-        // Orientation of the point against the edge, taken upward.
-        let (lx, ly, hx, hy) = if ay < by {
-            (ax, ay, bx, by)
-        } else {
-            (bx, by, ax, ay)
-        };
-        // Inside the guard band every difference is below 2^28 half-units: 32-bit
-        // factors with a 64-bit product (one multiply on a Cortex-M4).
-        let wide = |a: i64, b: i64| i64::from(a as i32) * i64::from(b as i32);
-        let cross = wide(hx - lx, y - ly) - wide(hy - ly, x - lx);
-        if cross == 0 {
-            return true;
-        }
-        if cross > 0 {
-            inside = !inside;
-        }
+        a = b;
     }
     inside
 }
