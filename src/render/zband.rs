@@ -77,33 +77,32 @@ impl DepthPlane {
     pub fn new(poly: &[ScreenVertex], s: u32) -> Option<Self> {
         let v0 = poly.first()?;
         let (x0, y0, q0) = half_units(v0);
-        // The largest fan triangle's plane, as (a, b, den): the plane is built once.
-        let mut best: Option<(i64, i64, i64)> = None;
+        let mut best: Option<(i64, Self)> = None;
         for pair in poly.get(1..)?.windows(2) {
             let [v1, v2] = pair else { continue };
             let (a, b, den) = plane_through(v0, v1, v2);
-            if den == 0 || best.is_some_and(|(_, _, area)| area.abs() >= den.abs()) {
+            if den == 0 || best.is_some_and(|(area, _)| area >= den.abs()) {
                 continue;
             }
-            best = Some((a, b, den));
+            let plane = Self {
+                x0,
+                y0,
+                q0,
+                a,
+                b,
+                den,
+                s,
+                i0: 0,
+                j0: 0,
+                q_ref: 0,
+                dq_dx: 0,
+                dq_dy: 0,
+                q_min: 0,
+                q_max: 0,
+            };
+            best = Some((den.abs(), plane));
         }
-        let (a, b, den) = best?;
-        let mut plane = Self {
-            x0,
-            y0,
-            q0,
-            a,
-            b,
-            den,
-            s,
-            i0: 0,
-            j0: 0,
-            q_ref: 0,
-            dq_dx: 0,
-            dq_dy: 0,
-            q_min: 0,
-            q_max: 0,
-        };
+        let (_, mut plane) = best?;
         let (q_min, q_max) = poly
             .iter()
             .fold((u32::MAX, 0), |(lo, hi), v| (lo.min(v.q), hi.max(v.q)));
