@@ -21,8 +21,9 @@ pub struct SceneStorage {
     pub arrays: MeshArrays,
     /// Which faces are planar ([`pbuffer::order::planar_faces`]), kept with the mesh
     /// ([`Mesh::with_planar_faces`]) as firmware keeps them: part of the mesh, made
-    /// once, not of a frame.
+    /// once (by the first `scene`), not of a frame.
     pub planar: Vec<u32>,
+    planar_made: bool,
     pub adjacency: AdjacencyStorage,
 }
 
@@ -35,6 +36,7 @@ impl SceneStorage {
         Self {
             arrays,
             planar,
+            planar_made: false,
             adjacency,
         }
     }
@@ -46,7 +48,11 @@ impl SceneStorage {
         let arrays = &self.arrays;
         let mesh = Mesh::new(&arrays.vertices, &arrays.indices, &arrays.offsets)
             .map_err(|e| format!("mesh: {e}"))?;
-        pbuffer::order::planar_faces(&mesh, &mut self.planar).map_err(|e| format!("mesh: {e}"))?;
+        if !self.planar_made {
+            pbuffer::order::planar_faces(&mesh, &mut self.planar)
+                .map_err(|e| format!("mesh: {e}"))?;
+            self.planar_made = true;
+        }
         let mesh = mesh
             .with_planar_faces(&self.planar)
             .map_err(|e| format!("mesh: {e}"))?;

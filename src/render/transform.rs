@@ -80,11 +80,7 @@ impl ProjectedVertex {
     /// Its projection; all zero for a vertex outside the view volume (see
     /// [`Self::outside`]), which has none.
     pub fn screen(&self) -> ScreenVertex {
-        if self.outside != 0 {
-            return ScreenVertex::default();
-        }
-        let [x, y, q] = self.coords;
-        ScreenVertex { x, y, q: q as u32 }
+        self.projection().unwrap_or_default()
     }
 
     /// Its projection, `None` outside the view volume.

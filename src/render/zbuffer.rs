@@ -237,8 +237,8 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
                 let p = vertices
                     .get(v as usize)
                     .map_or(ProjectedVertex::default(), |p| *p);
-                lo = lo.min(p.screen().y);
-                hi = hi.max(p.screen().y);
+                let y = p.screen().y;
+                (lo, hi) = (lo.min(y), hi.max(y));
                 outside |= p.outside();
             }
             if outside == 0 && !reaches(lo, hi) {

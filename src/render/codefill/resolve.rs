@@ -115,7 +115,7 @@ impl<
         out: &mut [u16],
     ) -> u32 {
         // The covering faces in index order (insertion: a few faces).
-        let mut cover = [(0u16, &NO_FACE); 8];
+        let mut cover = [&NO_FACE; 8];
         let mut n = 0;
         let mut fits = true;
         let mut bent = false;
@@ -126,11 +126,11 @@ impl<
                 return;
             }
             let mut i = n;
-            while i > 0 && cover[i - 1].0 > face.id {
+            while i > 0 && cover[i - 1].id > face.id {
                 cover[i] = cover[i - 1];
                 i -= 1;
             }
-            cover[i] = (face.id, face);
+            cover[i] = face;
             n += 1;
         });
         let cover = &cover[..n];
@@ -139,28 +139,26 @@ impl<
                 return self.nearest_one_by_one(row, x);
             }
             let mut at = [0u32; 8];
-            for (q, (_, face)) in at.iter_mut().zip(cover) {
+            for (q, face) in at.iter_mut().zip(cover) {
                 *q = face.plane.at(x);
             }
             // A fan triangle is within its face's bend of the plane (plus the
             // rounding): where every gap to a bent face is wider than both bends and
             // the tie, the planes decide as the fan triangles would.
             if bent && !planes_decide(cover, &at) {
-                for (q, (id, face)) in at.iter_mut().zip(cover) {
+                for (q, face) in at.iter_mut().zip(cover) {
                     if face.bend > 0 {
-                        if let Some(fan) = row.fan_depth(usize::from(id - 1), x) {
+                        if let Some(fan) = row.fan_depth(usize::from(face.id - 1), x) {
                             *q = fan;
                         }
                     }
                 }
             }
-            let (mut best, mut q) = (0u16, 0u32);
-            for (&qf, (id, face)) in at.iter().zip(cover) {
-                if best == 0 || qf > q.saturating_add(face.plane.tie) {
-                    (best, q) = (*id, qf);
-                }
+            let mut nearest = Nearest::NONE;
+            for (&q, face) in at.iter().zip(cover) {
+                nearest.offer(face, q);
             }
-            best
+            nearest.id
         };
         let mut runs = 0;
         let mut x = xa;
@@ -193,7 +191,7 @@ impl<
     /// `resolve_overlap` holds: taken in index order one by one, each with the
     /// depth of its fan triangle where it is not planar.
     fn nearest_one_by_one(&self, row: &RowFaces<'_>, x: u16) -> u16 {
-        let (mut best, mut q, mut after) = (0u16, 0u32, 0u16);
+        let (mut nearest, mut after) = (Nearest::NONE, 0u16);
         loop {
             let mut next: Option<&ActiveFace> = None;
             self.each_covering(|_, face| {
@@ -201,15 +199,14 @@ impl<
                     next = Some(face);
                 }
             });
-            let Some(face) = next else { return best };
+            let Some(face) = next else {
+                return nearest.id;
+            };
             after = face.id;
             let fan = (face.bend > 0)
                 .then(|| row.fan_depth(usize::from(face.id - 1), x))
                 .flatten();
-            let qf = fan.unwrap_or_else(|| face.plane.at(x));
-            if best == 0 || qf > q.saturating_add(face.plane.tie) {
-                (best, q) = (face.id, qf);
-            }
+            nearest.offer(face, fan.unwrap_or_else(|| face.plane.at(x)));
         }
     }
 
@@ -229,13 +226,31 @@ impl<
     }
 }
 
+/// The nearest face so far at one pixel, the faces offered in index order as the
+/// Z-buffer receives them: a later face wins when nearer by more than its tie.
+struct Nearest {
+    /// 1 + face index, 0 for none yet.
+    id: u16,
+    q: u32,
+}
+
+impl Nearest {
+    const NONE: Self = Self { id: 0, q: 0 };
+
+    fn offer(&mut self, face: &ActiveFace, q: u32) {
+        if self.id == 0 || q > self.q.saturating_add(face.plane.tie) {
+            (self.id, self.q) = (face.id, q);
+        }
+    }
+}
+
 /// Whether the planes' depths `at` of the faces `cover` decide as any depths within
 /// their bends would: every gap between two faces, one of them bent, is wider than
 /// their bends, the larger tie and the rounding.
-fn planes_decide(cover: &[(u16, &ActiveFace)], at: &[u32]) -> bool {
+fn planes_decide(cover: &[&ActiveFace], at: &[u32]) -> bool {
     let faces = cover.iter().zip(at);
-    faces.clone().enumerate().all(|(i, ((_, fi), &qi))| {
-        faces.clone().skip(i + 1).all(|((_, fj), &qj)| {
+    faces.clone().enumerate().all(|(i, (fi, &qi))| {
+        faces.clone().skip(i + 1).all(|(fj, &qj)| {
             let bends = fi.bend.saturating_add(fj.bend);
             let tie = fi.plane.tie.max(fj.plane.tie);
             bends == 0 || qi.abs_diff(qj) > bends.saturating_add(tie).saturating_add(ROUNDING)

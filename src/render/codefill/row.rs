@@ -57,16 +57,7 @@ impl<
                 end += 1;
             }
             let live = |e: &ActiveEdge| e.edge.first <= row;
-            if end == k + 1 {
-                // One crossing here (the common case): its face enters or leaves.
-                if let Some(&e) = self.edges.get(k).filter(|e| live(e)) {
-                    if x != xa {
-                        runs += self.resolve(&faces, xa, x, out);
-                        xa = x;
-                    }
-                    self.toggle(usize::from(e.face));
-                }
-            } else if (k..end).any(|j| self.edges.get(j).is_some_and(live)) {
+            if (k..end).any(|j| self.edges.get(j).is_some_and(live)) {
                 if x != xa {
                     runs += self.resolve(&faces, xa, x, out);
                     xa = x;
