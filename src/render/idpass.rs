@@ -26,7 +26,8 @@ pub struct IdWorkspace<'s> {
     pub vertices: &'s mut [ProjectedVertex],
     /// One bit per mesh face: drawn in this view (not culled).
     pub drawn: &'s mut [u32],
-    /// One bit per mesh edge: a feature edge in this view.
+    /// One bit per mesh edge: a feature edge in this view not yet drawn (scratch:
+    /// the line pass clears an edge's bit after the last band it reaches).
     pub features: &'s mut [u32],
     /// Face ids of the band (0 none, else 1 + face).
     pub ids: &'s mut [u16],

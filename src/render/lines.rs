@@ -234,13 +234,15 @@ pub(crate) fn polygon_contains(poly: &[ScreenVertex], x: i64, y: i64) -> bool {
     inside
 }
 
-/// Draws the feature edges that reach the band into the masks.
+/// Draws the feature edges that reach the band into the masks. Bands come top to
+/// bottom, each below the last: an edge that ends above the next band (or is out of
+/// view) leaves `features`, so that later bands do not ask it again.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn line_pass<const POLY: usize>(
     ctx: &FrameCtx<'_, '_>,
     vertices: &[ProjectedVertex],
     drawn: &[u32],
-    features: &[u32],
+    features: &mut [u32],
     edges: &EdgeAdjacency<'_>,
     settings: &Settings,
     band: &IdBand<'_>,
@@ -249,24 +251,47 @@ pub(crate) fn line_pass<const POLY: usize>(
     let hide = settings.mode.needs_depth();
     // The last face tested for covering an edge point, with its polygon and plane.
     let mut cache = FaceCache::<POLY>::new();
-    for (e, edge) in edges.edges().iter().enumerate() {
-        if !bit(features, e) {
-            continue;
+    let all = edges.edges();
+    // Most edges miss a band: rejected by their ends' rows (which hold every row the
+    // walk draws) before the clipping and the walk's divisions (a long library call
+    // each on a Cortex-M4).
+    let next = i32::from(band.top + band.rows);
+    let last = next >= i32::from(ctx.viewport.height);
+    for (w, word) in features.iter_mut().enumerate() {
+        let mut bits = *word;
+        while bits != 0 {
+            let k = bits.trailing_zeros();
+            bits &= bits - 1;
+            let Some(edge) = all.get(32 * w + k as usize) else {
+                break;
+            };
+            let seen = |v: u32| {
+                vertices
+                    .get(v as usize)
+                    .and_then(ProjectedVertex::projection)
+            };
+            let ends = match (seen(edge.a), seen(edge.b)) {
+                (Some(a), Some(b)) => Some((a, b)),
+                _ => edge_on_screen(ctx, vertices, edge),
+            };
+            let Some((a, b)) = ends else {
+                *word &= !(1 << k);
+                continue;
+            };
+            let (lo, hi) = (a.y.min(b.y) >> ctx.s, a.y.max(b.y) >> ctx.s);
+            if hi < next && !last {
+                // Done with after this band.
+                *word &= !(1 << k);
+            }
+            if hi < i32::from(band.top) || lo >= next {
+                continue;
+            }
+            let rows = band.top..band.top + band.rows;
+            walk_segment(&a, &b, ctx.s, ctx.viewport.width, rows, |px| {
+                let hidden = hide && hidden(ctx, vertices, drawn, edge, band, &px, &mut cache);
+                masks.set(px.x, px.y - band.top, hidden);
+            });
         }
-        let Some((a, b)) = edge_on_screen(ctx, vertices, edge) else {
-            continue;
-        };
-        // Most edges miss a band: rejected before the walk's divisions (a long
-        // library call each on a Cortex-M4).
-        let (lo, hi) = (a.y.min(b.y) >> ctx.s, a.y.max(b.y) >> ctx.s);
-        if hi < i32::from(band.top) || lo >= i32::from(band.top + band.rows) {
-            continue;
-        }
-        let rows = band.top..band.top + band.rows;
-        walk_segment(&a, &b, ctx.s, ctx.viewport.width, rows, |px| {
-            let hidden = hide && hidden(ctx, vertices, drawn, edge, band, &px, &mut cache);
-            masks.set(px.x, px.y - band.top, hidden);
-        });
     }
 }
 

@@ -124,7 +124,8 @@ pub struct Workspace<'s, D> {
     pub vertices: &'s mut [ProjectedVertex],
     /// One bit per face: drawn in this view (not culled).
     pub drawn: &'s mut [u32],
-    /// One bit per mesh edge: a feature edge in this view.
+    /// One bit per mesh edge: a feature edge in this view not yet drawn (scratch:
+    /// the line pass clears an edge's bit after the last band it reaches).
     pub features: &'s mut [u32],
     /// Depth of the band.
     pub depth: &'s mut [D],

@@ -45,7 +45,8 @@ pub struct CodeWorkspace<'s> {
     pub vertices: &'s mut [ProjectedVertex],
     /// One bit per face: drawn in this view (not culled).
     pub drawn: &'s mut [u32],
-    /// One bit per mesh edge: a feature edge in this view.
+    /// One bit per mesh edge: a feature edge in this view not yet drawn (scratch:
+    /// the line pass clears an edge's bit after the last band it reaches).
     pub features: &'s mut [u32],
     /// Drawn faces sorted by first row (`row << 16 | face`).
     pub order: &'s mut [u32],
