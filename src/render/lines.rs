@@ -258,30 +258,20 @@ pub(crate) fn line_pass<const POLY: usize>(
     let next = i32::from(band.top + band.rows);
     let last = next >= i32::from(ctx.viewport.height);
     for (w, word) in features.iter_mut().enumerate() {
-        let mut bits = *word;
+        let (mut bits, mut done) = (*word, 0u32);
         while bits != 0 {
             let k = bits.trailing_zeros();
             bits &= bits - 1;
             let Some(edge) = all.get(32 * w + k as usize) else {
                 break;
             };
-            let seen = |v: u32| {
-                vertices
-                    .get(v as usize)
-                    .and_then(ProjectedVertex::projection)
-            };
-            let ends = match (seen(edge.a), seen(edge.b)) {
-                (Some(a), Some(b)) => Some((a, b)),
-                _ => edge_on_screen(ctx, vertices, edge),
-            };
-            let Some((a, b)) = ends else {
-                *word &= !(1 << k);
+            let Some((a, b)) = edge_on_screen(ctx, vertices, edge) else {
+                done |= 1 << k;
                 continue;
             };
             let (lo, hi) = (a.y.min(b.y) >> ctx.s, a.y.max(b.y) >> ctx.s);
             if hi < next && !last {
-                // Done with after this band.
-                *word &= !(1 << k);
+                done |= 1 << k;
             }
             if hi < i32::from(band.top) || lo >= next {
                 continue;
@@ -292,13 +282,13 @@ pub(crate) fn line_pass<const POLY: usize>(
                 masks.set(px.x, px.y - band.top, hidden);
             });
         }
+        // Out of view, or done with after this band.
+        *word &= !done;
     }
 }
 
 /// The edge clipped to the view and projected, or `None` when it is out of view.
-// Out of line: the line pass asks it only of an edge with an end out of view, and
-// inlined there it took the M4 image 7.9 KB of flash and the band loop 544 B of stack.
-#[inline(never)]
+#[inline]
 pub(crate) fn edge_on_screen(
     ctx: &FrameCtx<'_, '_>,
     vertices: &[ProjectedVertex],
@@ -308,12 +298,25 @@ pub(crate) fn edge_on_screen(
         vertices.get(edge.a as usize)?,
         vertices.get(edge.b as usize)?,
     );
-    let (oa, ob) = (pa.outside(), pb.outside());
+    match (pa.projection(), pb.projection()) {
+        (Some(a), Some(b)) => Some((a, b)),
+        _ => clipped_edge(ctx, vertices, edge, (pa.outside(), pb.outside())),
+    }
+}
+
+/// [`edge_on_screen`] of an edge with an end outside the view volume (`oa`, `ob`:
+/// its ends' outcodes).
+// Out of line: inlined into the line pass's band loop it took the M4 image 7.9 KB
+// of flash and 544 B of stack, for the few edges that need it.
+#[inline(never)]
+fn clipped_edge(
+    ctx: &FrameCtx<'_, '_>,
+    vertices: &[ProjectedVertex],
+    edge: &MeshEdge,
+    (oa, ob): (u8, u8),
+) -> Option<(ScreenVertex, ScreenVertex)> {
     if oa & ob != 0 {
         return None;
-    }
-    if oa | ob == 0 {
-        return Some((pa.screen(), pb.screen()));
     }
     let (ca, cb) = (
         ctx.clip_of(vertices, edge.a)?,
