@@ -4,7 +4,11 @@
 //! ```text
 //! cargo run --release -p host_tests --bin bench [-- --markdown] [-- --jobs N]
 //! cargo run --release -p host_tests --bin bench -- --scene3d [--markdown]
+//! cargo run --release -p host_tests --bin bench -- --firmware [--m4 FILE]
 //! ```
+//!
+//! `--firmware` counts the firmware examples' frames on the host and sets them against
+//! the emulated Cortex-M4's counts of the same frames (`firmware.rs`).
 //!
 //! `--scene3d` runs the 3-D section instead (`host_tests::bench3d`): three models at
 //! two sizes with dashed hidden lines, the library's code-fill and Z-buffer engines
@@ -30,6 +34,22 @@
 //! Without valgrind the checks still run; the instruction counts are skipped (exit 2).
 
 mod fills_report;
+mod firmware;
+
+// The firmware examples' modules, for `--firmware` (they name each other from the
+// crate root, as in examples/embedded).
+#[allow(dead_code)]
+#[path = "../../../../examples/embedded/obj.rs"]
+mod obj;
+#[allow(dead_code)]
+#[path = "../../../../examples/embedded/src/painter.rs"]
+mod painter;
+#[allow(dead_code)]
+#[path = "../../../../examples/embedded/src/plain.rs"]
+mod plain;
+#[allow(dead_code)]
+#[path = "../../../../examples/embedded/src/scenes.rs"]
+mod scenes;
 
 use std::convert::Infallible;
 use std::process::ExitCode;
@@ -358,6 +378,18 @@ fn job_id(set: Set, v: Variant) -> String {
 
 /// Runs one job under callgrind: prints the pixels set in its frame.
 fn child(id: &str) -> ExitCode {
+    if let Some(key) = id.strip_prefix("fw/") {
+        return match firmware::child(key) {
+            Ok(pixels) => {
+                println!("pixels={pixels}");
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("bench: {e}");
+                ExitCode::from(2)
+            }
+        };
+    }
     if let Some(name) = id.strip_prefix("scene3d/") {
         return match host_tests::bench3d::child(name) {
             Ok(pixels) => {
@@ -394,6 +426,8 @@ fn main() -> ExitCode {
     let mut markdown = false;
     let mut scene3d = false;
     let mut ram = false;
+    let mut firmware = false;
+    let mut m4 = firmware::DEFAULT_M4.to_string();
     let mut jobs = std::thread::available_parallelism().map_or(1, |n| n.get());
     let mut it = args.iter();
     while let Some(a) = it.next() {
@@ -401,6 +435,14 @@ fn main() -> ExitCode {
             "--markdown" => markdown = true,
             "--scene3d" => scene3d = true,
             "--ram" => ram = true,
+            "--firmware" => firmware = true,
+            "--m4" => match it.next() {
+                Some(f) => m4 = f.clone(),
+                None => {
+                    eprintln!("bench: --m4 needs a file");
+                    return ExitCode::from(2);
+                }
+            },
             "--jobs" => match it.next().and_then(|j| j.parse().ok()) {
                 Some(j) => jobs = j,
                 None => {
@@ -409,12 +451,12 @@ fn main() -> ExitCode {
                 }
             },
             "-h" | "--help" => {
-                println!("usage: bench [--markdown] [--scene3d | --ram] [--jobs N]");
+                println!("usage: bench [--markdown] [--scene3d | --ram | --firmware [--m4 FILE]] [--jobs N]");
                 return ExitCode::SUCCESS;
             }
             other => {
                 eprintln!(
-                    "bench: unknown argument {other:?}\nusage: bench [--markdown] [--scene3d | --ram] [--jobs N]"
+                    "bench: unknown argument {other:?}\nusage: bench [--markdown] [--scene3d | --ram | --firmware [--m4 FILE]] [--jobs N]"
                 );
                 return ExitCode::from(2);
             }
@@ -422,6 +464,9 @@ fn main() -> ExitCode {
     }
     if cfg!(debug_assertions) {
         eprintln!("bench: warning: debug build; run with --release for meaningful counts");
+    }
+    if firmware {
+        return firmware::run(&m4, jobs);
     }
     if ram {
         return host_tests::bench3d::run_ram(markdown);
