@@ -312,6 +312,12 @@ impl RowPlane {
         self.q_max
     }
 
+    /// The smallest nearness the plane takes anywhere (its vertices' smallest).
+    #[inline]
+    pub fn min_q(&self) -> u32 {
+        self.q_min
+    }
+
     /// The 32-bit sample of plane value `q`, clamped to the vertices' range.
     #[inline(always)]
     fn sample(&self, q: i64) -> u32 {

@@ -104,7 +104,9 @@ impl<
     /// until the winner changes, found by bisection (two planes along a row cross
     /// at most once). A face that is not planar ([`ActiveFace::bend`]) takes the
     /// depth of its fan triangle at the pixel (with its plane's tie margin) where its
-    /// plane, off by up to its bend, could decide otherwise.
+    /// plane, off by up to its bend, could decide otherwise. Where one face is
+    /// nearer than the others by their ranges alone ([`nearest_by_range`]), no
+    /// depth is taken.
     // Indexing: n < 8 = cover.len() before an insertion (checked), and i <= n.
     #[allow(clippy::indexing_slicing)]
     pub(super) fn resolve_overlap(
@@ -134,6 +136,14 @@ impl<
             n += 1;
         });
         let cover = &cover[..n];
+        if fits {
+            if let Some(id) = nearest_by_range(cover) {
+                if let Some(run) = out.get_mut(usize::from(xa)..usize::from(xb)) {
+                    run.fill(id);
+                }
+                return 1;
+            }
+        }
         let winner = |x: u16| -> u16 {
             if !fits {
                 return self.nearest_one_by_one(row, x);
@@ -242,6 +252,27 @@ impl Nearest {
             (self.id, self.q) = (face.id, q);
         }
     }
+}
+
+/// The face that wins at every pixel of a run, when its range of nearness lies
+/// above every other covering face's by more than its tie; `None` otherwise.
+/// Offered in index order ([`Nearest`]), that face takes a pixel from any face
+/// before it and keeps it from any after, whatever the depths: a face's depth at a
+/// pixel lies in its range, whether its plane's (clamped to its polygon's vertices)
+/// or its fan triangle's (clamped to the corners, which for a face wholly in view
+/// are its polygon's vertices). A clipped face that is not planar (`bend` is
+/// `u32::MAX`) has corners outside its polygon: no answer then.
+fn nearest_by_range(cover: &[&ActiveFace]) -> Option<u16> {
+    if cover.iter().any(|f| f.bend == u32::MAX) {
+        return None;
+    }
+    let w = cover.iter().max_by_key(|f| f.plane.min_q())?;
+    let floor = u64::from(w.plane.min_q());
+    let tie = u64::from(w.plane.tie);
+    cover
+        .iter()
+        .all(|f| core::ptr::eq(*f, *w) || u64::from(f.plane.max_q()) + tie < floor)
+        .then_some(w.id)
 }
 
 /// Whether the planes' depths `at` of the faces `cover` decide as any depths within

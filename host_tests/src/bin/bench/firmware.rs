@@ -108,7 +108,9 @@ fn draw(example: &str, n: u32, measure: bool) -> Vec<u8> {
         }
     };
     match scene {
-        "suzanne" => frame::<400, 240, { packed_len(400, 240) }>(example, &mesh, &edges, &view, run),
+        "suzanne" => {
+            frame::<400, 240, { packed_len(400, 240) }>(example, &mesh, &edges, &view, run)
+        }
         _ => frame::<128, 64, { packed_len(128, 64) }>(example, &mesh, &edges, &view, run),
     }
 }
