@@ -194,8 +194,11 @@ pub fn child(key: &str) -> Result<usize, String> {
     Ok(bytes.iter().map(|b| b.count_ones() as usize).sum())
 }
 
-/// The firmware's frame lines: (example, n) to (hash, instructions).
-fn read_m4(path: &str) -> Result<HashMap<(String, u32), (u64, u64)>, String> {
+/// The firmware's frames: (example, n) to (hash, instructions).
+type M4Frames = HashMap<(String, u32), (u64, u64)>;
+
+/// Reads the firmware's frame lines.
+fn read_m4(path: &str) -> Result<M4Frames, String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
     let mut out = HashMap::new();
     for line in text.lines().filter(|l| l.starts_with("frame ")) {
