@@ -13,9 +13,10 @@
 use std::collections::HashMap;
 use std::process::ExitCode;
 
+use fixed::types::extra::U4;
 use host_tests::callgrind::{measure_all, measured_region, thousands};
 use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
-use pbuffer::{packed_len, DrawMode, PackedFramebuffer, Pattern};
+use pbuffer::{packed_len, CodeFillRenderer, CodeWorkspace, DrawMode, PackedFramebuffer, Pattern};
 
 use crate::scenes::{self, fnv1a64, panel, suzanne, View};
 use crate::{obj, painter, plain};
@@ -129,26 +130,20 @@ fn frame<const W: usize, const H: usize, const N: usize>(
         DrawMode::Dashed
     };
     match example {
-        "suzanne" | "surfaces" => {
-            let mut engine = Box::new(scenes::Engine::new());
-            let mut b = Box::new(scenes::SuzanneBuffers::new());
-            let mut ws = b.workspace();
-            run(&mut || {
-                fb.clear();
-                scenes::render(&mut engine, mesh, edges, view, mode, &mut ws, &mut *fb)
-                    .expect("renders");
-            });
-        }
-        "panel" => {
-            let mut engine = Box::new(scenes::PanelEngine::new());
-            let mut b = Box::new(scenes::PanelBuffers::new());
-            let mut ws = b.workspace();
-            run(&mut || {
-                fb.clear();
-                scenes::render(&mut engine, mesh, edges, view, mode, &mut ws, &mut *fb)
-                    .expect("renders");
-            });
-        }
+        "suzanne" | "surfaces" => engine_frame(
+            &mut scenes::Engine::new(),
+            &mut scenes::SuzanneBuffers::new().workspace(),
+            (mesh, edges, view, mode),
+            &mut *fb,
+            run,
+        ),
+        "panel" => engine_frame(
+            &mut scenes::PanelEngine::new(),
+            &mut scenes::PanelBuffers::new().workspace(),
+            (mesh, edges, view, mode),
+            &mut *fb,
+            run,
+        ),
         "suzanne-painter" => {
             let mut p = Box::new(painter::PainterBuffers::<507, 500>::new());
             p.prepare(mesh);
@@ -181,6 +176,20 @@ fn frame<const W: usize, const H: usize, const N: usize>(
         }
     }
     fb.as_bytes().to_vec()
+}
+
+/// One pbuffer frame as the firmware draws it: clear, then `scenes::render`.
+fn engine_frame<const W: usize, const H: usize, const N: usize, const F: usize, const E: usize>(
+    engine: &mut CodeFillRenderer<U4, 1, F, E, 16>,
+    ws: &mut CodeWorkspace<'_>,
+    (mesh, edges, view, mode): (&Mesh<'_>, &EdgeAdjacency<'_>, &View, DrawMode),
+    fb: &mut PackedFramebuffer<W, H, N>,
+    run: impl Fn(&mut dyn FnMut()),
+) {
+    run(&mut || {
+        fb.clear();
+        scenes::render(engine, mesh, edges, view, mode, ws, fb).expect("renders");
+    });
 }
 
 /// Child job `EXAMPLE/N`: draws that frame in the measured region.

@@ -376,31 +376,27 @@ fn job_id(set: Set, v: Variant) -> String {
     format!("{}/{}", set.key(), v.key())
 }
 
+/// Prints a 3-D child job's pixels (or its error, exit 2).
+fn pixels_or_error(r: Result<usize, String>) -> ExitCode {
+    match r {
+        Ok(pixels) => {
+            println!("pixels={pixels}");
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("bench: {e}");
+            ExitCode::from(2)
+        }
+    }
+}
+
 /// Runs one job under callgrind: prints the pixels set in its frame.
 fn child(id: &str) -> ExitCode {
     if let Some(key) = id.strip_prefix("fw/") {
-        return match firmware::child(key) {
-            Ok(pixels) => {
-                println!("pixels={pixels}");
-                ExitCode::SUCCESS
-            }
-            Err(e) => {
-                eprintln!("bench: {e}");
-                ExitCode::from(2)
-            }
-        };
+        return pixels_or_error(firmware::child(key));
     }
     if let Some(name) = id.strip_prefix("scene3d/") {
-        return match host_tests::bench3d::child(name) {
-            Ok(pixels) => {
-                println!("pixels={pixels}");
-                ExitCode::SUCCESS
-            }
-            Err(e) => {
-                eprintln!("bench: {e}");
-                ExitCode::from(2)
-            }
-        };
+        return pixels_or_error(host_tests::bench3d::child(name));
     }
     let parsed = id
         .split_once('/')
