@@ -374,10 +374,10 @@ mod tests {
             let n = 2 + dice.below(3) as usize;
             let mut faces = [NO_FACE; 4];
             let mut made = 0;
-            for (k, slot) in faces.iter_mut().take(n).enumerate() {
+            for _ in 0..n {
                 let base = (1 << 24) + (dice.below(4) as u32) * (3 << 19);
-                if let Some(f) = face(&mut dice, 1 + k as u16, base) {
-                    *slot = f;
+                if let Some(f) = face(&mut dice, 1 + made as u16, base) {
+                    faces[made] = f;
                     made += 1;
                 }
             }
