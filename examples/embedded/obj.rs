@@ -20,6 +20,8 @@ pub struct ObjMesh {
 impl ObjMesh {
     /// Unique edges after welding bit-identical positions: the size of the edge
     /// store that `EdgeAdjacency::build` needs.
+    // Used by host_tests (firmware_examples.rs includes this file), not by build.rs.
+    #[allow(dead_code)]
     pub fn unique_edges(&self) -> usize {
         let mut first = std::collections::BTreeMap::new();
         let weld: Vec<u32> = self
