@@ -64,43 +64,43 @@ fn arrays(scene: &str) -> Arrays {
     }
 }
 
+/// The scene an example draws: `"suzanne"` or `"panel"`.
+fn scene_of(example: &str) -> &'static str {
+    if example.starts_with("panel") {
+        "panel"
+    } else {
+        "suzanne"
+    }
+}
+
 /// Frames of an example's scene.
 fn frames(example: &str) -> u32 {
-    if example.starts_with("panel") {
-        panel::FRAMES
-    } else {
-        suzanne::FRAMES
+    match scene_of(example) {
+        "panel" => panel::FRAMES,
+        _ => suzanne::FRAMES,
     }
 }
 
 /// Draws frame `n` of `example`, counting only what the firmware counts when
 /// `measure` is set; returns the frame's bytes.
 fn draw(example: &str, n: u32, measure: bool) -> Vec<u8> {
-    let scene = if example.starts_with("panel") {
-        "panel"
-    } else {
-        "suzanne"
-    };
+    let scene = scene_of(example);
     let a = arrays(scene);
-    let plain_mesh = Mesh::new(&a.vertices, &a.indices, &a.offsets).expect("mesh");
-    let mut planar = vec![0u32; pbuffer::mesh::planar_words(plain_mesh.face_count())];
-    pbuffer::order::planar_faces(&plain_mesh, &mut planar).expect("sized");
-    // As the suzanne firmware: planarity made on the host, kept with the mesh.
+    let mesh = Mesh::new(&a.vertices, &a.indices, &a.offsets).expect("mesh");
+    let mut planar = vec![0u32; pbuffer::mesh::planar_words(mesh.face_count())];
+    // As the suzanne firmware: planarity made on the host, kept with the mesh (the
+    // panel's firmware keeps none).
     let mesh = if scene == "suzanne" {
-        plain_mesh.with_planar_faces(&planar).expect("planar bits")
+        pbuffer::order::planar_faces(&mesh, &mut planar).expect("sized");
+        mesh.with_planar_faces(&planar).expect("planar bits")
     } else {
-        plain_mesh
+        mesh
     };
     let mut store = vec![MeshEdge::EMPTY; a.indices.len()];
     let mut weld = vec![0u32; a.vertices.len()];
     let mut scratch = vec![HalfEdgeRecord::EMPTY; a.indices.len()];
     let edges =
         EdgeAdjacency::build(&mesh, 30.0, &mut weld, &mut scratch, &mut store).expect("edges");
-    let view = if scene == "panel" {
-        panel::view(n)
-    } else {
-        suzanne::view(n)
-    };
     let run = |f: &mut dyn FnMut()| {
         if measure {
             measured_region(f);
@@ -109,18 +109,25 @@ fn draw(example: &str, n: u32, measure: bool) -> Vec<u8> {
         }
     };
     match scene {
-        "suzanne" => {
-            frame::<400, 240, { packed_len(400, 240) }>(example, &mesh, &edges, &view, run)
-        }
-        _ => frame::<128, 64, { packed_len(128, 64) }>(example, &mesh, &edges, &view, run),
+        "suzanne" => frame::<400, 240, { packed_len(400, 240) }>(
+            example,
+            (&mesh, &edges, &suzanne::view(n)),
+            run,
+        ),
+        _ => frame::<128, 64, { packed_len(128, 64) }>(
+            example,
+            (&mesh, &edges, &panel::view(n)),
+            run,
+        ),
     }
 }
 
+/// The mesh, its edges and the camera of one frame.
+type FrameScene<'a, 'm, 'e> = (&'a Mesh<'m>, &'a EdgeAdjacency<'e>, &'a View);
+
 fn frame<const W: usize, const H: usize, const N: usize>(
     example: &str,
-    mesh: &Mesh<'_>,
-    edges: &EdgeAdjacency<'_>,
-    view: &View,
+    scene: FrameScene<'_, '_, '_>,
     run: impl Fn(&mut dyn FnMut()),
 ) -> Vec<u8> {
     let mut fb = Box::new(PackedFramebuffer::<W, H, N>::new());
@@ -133,47 +140,35 @@ fn frame<const W: usize, const H: usize, const N: usize>(
         "suzanne" | "surfaces" => engine_frame(
             &mut scenes::Engine::new(),
             &mut scenes::SuzanneBuffers::new().workspace(),
-            (mesh, edges, view, mode),
+            scene,
+            mode,
             &mut *fb,
             run,
         ),
         "panel" => engine_frame(
             &mut scenes::PanelEngine::new(),
             &mut scenes::PanelBuffers::new().workspace(),
-            (mesh, edges, view, mode),
+            scene,
+            mode,
             &mut *fb,
             run,
         ),
-        "suzanne-painter" => {
-            let mut p = Box::new(painter::PainterBuffers::<507, 500>::new());
-            p.prepare(mesh);
-            run(&mut || {
-                fb.clear();
-                p.render(mesh, view, &mut *fb).expect("painter");
-            });
-        }
-        "panel-painter" => {
-            let mut p = Box::new(painter::PainterBuffers::<24, 16>::new());
-            p.prepare(mesh);
-            run(&mut || {
-                fb.clear();
-                p.render(mesh, view, &mut *fb).expect("painter");
-            });
-        }
+        "suzanne-painter" => painter_frame(
+            &mut painter::PainterBuffers::<507, 500>::new(),
+            scene,
+            &mut *fb,
+            run,
+        ),
+        "panel-painter" => painter_frame(
+            &mut painter::PainterBuffers::<24, 16>::new(),
+            scene,
+            &mut *fb,
+            run,
+        ),
         "suzanne-plainf32" => {
-            let mut p = Box::new(plain::PlainBuffers::<{ 400 * 240 }, N, 507, 500>::new());
-            p.prepare(mesh);
-            let closed = edges.is_closed();
-            run(&mut || p.render(mesh, edges.edges(), closed, view, W, H, &Pattern::PAPER));
-            return p.frame.to_vec();
+            return plain_frame::<W, H, N, { 400 * 240 }, 507, 500>(scene, run);
         }
-        _ => {
-            let mut p = Box::new(plain::PlainBuffers::<{ 128 * 64 }, N, 24, 16>::new());
-            p.prepare(mesh);
-            let closed = edges.is_closed();
-            run(&mut || p.render(mesh, edges.edges(), closed, view, W, H, &Pattern::PAPER));
-            return p.frame.to_vec();
-        }
+        _ => return plain_frame::<W, H, N, { 128 * 64 }, 24, 16>(scene, run),
     }
     fb.as_bytes().to_vec()
 }
@@ -182,7 +177,8 @@ fn frame<const W: usize, const H: usize, const N: usize>(
 fn engine_frame<const W: usize, const H: usize, const N: usize, const F: usize, const E: usize>(
     engine: &mut CodeFillRenderer<U4, 1, F, E, 16>,
     ws: &mut CodeWorkspace<'_>,
-    (mesh, edges, view, mode): (&Mesh<'_>, &EdgeAdjacency<'_>, &View, DrawMode),
+    (mesh, edges, view): FrameScene<'_, '_, '_>,
+    mode: DrawMode,
     fb: &mut PackedFramebuffer<W, H, N>,
     run: impl Fn(&mut dyn FnMut()),
 ) {
@@ -190,6 +186,39 @@ fn engine_frame<const W: usize, const H: usize, const N: usize, const F: usize, 
         fb.clear();
         scenes::render(engine, mesh, edges, view, mode, ws, fb).expect("renders");
     });
+}
+
+/// One frame of the embedded-graphics painter baseline: clear, then paint.
+fn painter_frame<const W: usize, const H: usize, const N: usize, const V: usize, const F: usize>(
+    p: &mut painter::PainterBuffers<V, F>,
+    (mesh, _, view): FrameScene<'_, '_, '_>,
+    fb: &mut PackedFramebuffer<W, H, N>,
+    run: impl Fn(&mut dyn FnMut()),
+) {
+    p.prepare(mesh);
+    run(&mut || {
+        fb.clear();
+        p.render(mesh, view, fb).expect("painter");
+    });
+}
+
+/// One frame of the plain f32 P-buffer baseline (it clears its own buffers).
+fn plain_frame<
+    const W: usize,
+    const H: usize,
+    const N: usize,
+    const P: usize,
+    const V: usize,
+    const F: usize,
+>(
+    (mesh, edges, view): FrameScene<'_, '_, '_>,
+    run: impl Fn(&mut dyn FnMut()),
+) -> Vec<u8> {
+    let mut p = Box::new(plain::PlainBuffers::<P, N, V, F>::new());
+    p.prepare(mesh);
+    let closed = edges.is_closed();
+    run(&mut || p.render(mesh, edges.edges(), closed, view, W, H, &Pattern::PAPER));
+    p.frame.to_vec()
 }
 
 /// Child job `EXAMPLE/N`: draws that frame in the measured region.
