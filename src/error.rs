@@ -106,6 +106,20 @@ pub enum Error<T = Infallible> {
         /// The fewest that work.
         needed: u32,
     },
+    /// Baked face planes given to
+    /// [`BakedMesh::new`](crate::render::BakedMesh::new) do not fit the mesh: a
+    /// count that differs, or a normal or centroid that is not the face's own.
+    BadFacePlanes {
+        /// The first face whose plane does not fit (the plane count when short).
+        face: usize,
+    },
+    /// Too many sub-pixel bits for an engine whose screen coordinates are 16 bits.
+    SubpixelTooFine {
+        /// Sub-pixel bits compiled in.
+        bits: u32,
+        /// The most that work.
+        max: u32,
+    },
     /// The span sink or draw target failed.
     Target(T),
 }
@@ -175,6 +189,8 @@ impl Error<Infallible> {
             Error::CodeTooWide { needed, capacity } => Error::CodeTooWide { needed, capacity },
             Error::Scheme(v) => Error::Scheme(v),
             Error::SubpixelTooCoarse { bits, needed } => Error::SubpixelTooCoarse { bits, needed },
+            Error::BadFacePlanes { face } => Error::BadFacePlanes { face },
+            Error::SubpixelTooFine { bits, max } => Error::SubpixelTooFine { bits, max },
             Error::Target(never) => match never {},
         }
     }
@@ -233,6 +249,13 @@ impl<T: fmt::Debug> fmt::Display for Error<T> {
             Error::SubpixelTooCoarse { bits, needed } => write!(
                 f,
                 "{bits} sub-pixel bits are too few for sub-samples, at least {needed} are needed"
+            ),
+            Error::BadFacePlanes { face } => {
+                write!(f, "baked face planes do not fit the mesh at face {face}")
+            }
+            Error::SubpixelTooFine { bits, max } => write!(
+                f,
+                "{bits} sub-pixel bits are too many for this engine, at most {max}"
             ),
             Error::Target(e) => write!(f, "draw target failed: {e:?}"),
         }

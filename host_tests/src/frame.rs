@@ -100,11 +100,14 @@ pub enum EngineSpec {
     /// Newell's list priority for each view (depth sort, Newell's tests, shuffles,
     /// splits), the fragments painted far to near.
     Newell,
+    /// The fast engine for microcontrollers: a scan-line Z-buffer one row high, 16-bit
+    /// depth, per-mesh constants baked; approximate (`pbuffer::render::FastRenderer`).
+    Fast,
 }
 
 impl EngineSpec {
     /// Every engine, in the order the `--engine` help lists them.
-    pub const ALL: [EngineSpec; 9] = [
+    pub const ALL: [EngineSpec; 10] = [
         EngineSpec::CodeFill,
         EngineSpec::CodeFillCrossings,
         EngineSpec::Scanline,
@@ -114,6 +117,7 @@ impl EngineSpec {
         EngineSpec::Warnock,
         EngineSpec::Raycast,
         EngineSpec::Newell,
+        EngineSpec::Fast,
     ];
 
     /// The engine's `--engine` name.
@@ -128,6 +132,7 @@ impl EngineSpec {
             EngineSpec::Warnock => "warnock",
             EngineSpec::Raycast => "raycast",
             EngineSpec::Newell => "newell",
+            EngineSpec::Fast => "fast",
         }
     }
 

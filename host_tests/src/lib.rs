@@ -5,6 +5,7 @@ pub mod bsp;
 pub mod callgrind;
 pub mod cli;
 pub mod engines;
+pub mod fast;
 pub mod fit;
 pub mod frame;
 pub mod grey;

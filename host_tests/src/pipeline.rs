@@ -268,6 +268,9 @@ fn render_s<Frac: LeEqU32>(
     if spec.engine == EngineSpec::Newell {
         return crate::engines::render_newell_paint::<Frac>(mesh, cam, spec);
     }
+    if spec.engine == EngineSpec::Fast {
+        return crate::fast::render_fast::<Frac>(mesh, cam, spec);
+    }
     if spec.engine == EngineSpec::Raycast {
         return crate::engines::render_raycast::<Frac>(mesh, cam, spec);
     }

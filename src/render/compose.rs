@@ -77,11 +77,14 @@ impl<C: PixelColor> Palette for SolidPalette<C> {
 /// Sees each finished row: face ids (0 none, else 1 + face) and the visible and
 /// hidden line masks (bit k of word w is pixel 32w + k), before the pattern.
 pub trait FrameProbe {
+    /// False for a probe that ignores every row, so an engine need not make the ids.
+    const ACTIVE: bool = true;
     /// Row `y` is finished.
     fn row(&mut self, y: u16, ids: &[u16], visible: &[u32], hidden: &[u32]);
 }
 
 impl FrameProbe for () {
+    const ACTIVE: bool = false;
     fn row(&mut self, _: u16, _: &[u16], _: &[u32], _: &[u32]) {}
 }
 

@@ -15,6 +15,7 @@ mod bend;
 mod codefill;
 mod compose;
 mod coverage;
+mod fast;
 mod idpass;
 mod lines;
 mod painter;
@@ -35,6 +36,10 @@ use heapless::Vec;
 pub use abuffer::{GreyPalette, GreyShades, SmallFace};
 pub use codefill::{CodeFillRenderer, CodeWorkspace, DepthOrder, RowCodes, Visibility};
 pub use compose::{FrameProbe, MonoPalette, Palette, SolidPalette};
+pub use fast::{
+    BakedMesh, BakedSource, CompactEdge, FacePlane, FastRenderer, FastVertex, FastWorkspace,
+    FAST_MAX_SUBPIXEL_BITS, MAX_CORNERS, MAX_FAST_FACES,
+};
 pub use idpass::IdWorkspace;
 pub use painter::{PaintOrder, PainterRenderer};
 pub use pick::{pick, Pick, PickWorkspace, PickedEdge};

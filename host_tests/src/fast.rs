@@ -1,0 +1,125 @@
+//! The fast engine on the host: the mesh baked as firmware bakes it in `build.rs`
+//! (`BakedMesh::bake`, outside the frame), then one frame drawn by `FastRenderer`
+//! with its lent storage sized for the mesh and the frame.
+
+use fixed::types::extra::LeEqU32;
+use pbuffer::render::{BakedMesh, CompactEdge, FacePlane, FastRenderer, FastVertex, FastWorkspace};
+use pbuffer::MonoPalette;
+
+use crate::frame::{CameraSpec, Frame, MeshData, RenderSpec};
+use crate::setup::{Measured, Scene, SceneStorage};
+
+/// Active facets and lines the host engine has room for.
+pub const FACETS: usize = 4096;
+pub const LINES: usize = 4096;
+
+/// The fast engine's per-mesh constants, owned.
+pub struct Baked {
+    pub planes: Vec<FacePlane>,
+    pub edges: Vec<CompactEdge>,
+}
+
+impl Baked {
+    /// Bakes `scene`'s mesh and edge list.
+    pub fn new(scene: &Scene<'_>) -> Result<Self, String> {
+        let mut planes = vec![FacePlane::default(); scene.mesh.face_count()];
+        let mut edges = vec![CompactEdge::default(); scene.adjacency.edges().len()];
+        BakedMesh::bake(&scene.mesh, &scene.adjacency, &mut planes, &mut edges)
+            .map_err(|e| format!("bake: {e}"))?;
+        Ok(Self { planes, edges })
+    }
+}
+
+/// Lent buffers of a fast frame.
+pub struct FastBuffers {
+    pub vertices: Vec<FastVertex>,
+    pub facing: Vec<u32>,
+    pub face_links: Vec<u16>,
+    pub line_links: Vec<u16>,
+    pub heads: Vec<u16>,
+    pub row: Vec<u32>,
+    pub masks: Vec<u32>,
+    pub pool: Vec<FastVertex>,
+    pub ids: Vec<u16>,
+    pub slopes: Vec<u16>,
+}
+
+impl FastBuffers {
+    /// Sized for `mesh` at `w` x `h`, with `pool` clipped corners.
+    pub fn new(vertices: usize, faces: usize, edges: usize, w: usize, h: usize, pool: usize) -> Self {
+        Self {
+            vertices: vec![FastVertex::default(); vertices],
+            facing: vec![0; faces.div_ceil(32)],
+            face_links: vec![0; faces],
+            line_links: vec![0; edges],
+            heads: vec![0; 2 * h],
+            row: vec![0; w],
+            masks: vec![0; 2 * w.div_ceil(32)],
+            pool: vec![FastVertex::default(); pool],
+            ids: vec![0; w],
+            slopes: vec![0; faces],
+        }
+    }
+
+    pub fn workspace(&mut self) -> FastWorkspace<'_> {
+        FastWorkspace {
+            vertices: &mut self.vertices,
+            facing: &mut self.facing,
+            face_links: &mut self.face_links,
+            line_links: &mut self.line_links,
+            heads: &mut self.heads,
+            row: &mut self.row,
+            masks: &mut self.masks,
+            pool: &mut self.pool,
+            ids: &mut self.ids,
+            slopes: &mut self.slopes,
+        }
+    }
+}
+
+/// `fast`: one frame of the fast engine.
+pub(crate) fn render_fast<Frac: LeEqU32>(
+    data: &MeshData,
+    cam: &CameraSpec,
+    spec: &RenderSpec,
+) -> Result<Frame, String> {
+    let mut storage = SceneStorage::new(data);
+    let scene = storage.scene(cam, spec)?;
+    let baked = Baked::new(&scene)?;
+    let mesh = BakedMesh::new(scene.mesh, &baked.planes, &baked.edges)
+        .map_err(|e| format!("baked mesh: {e}"))?;
+    let (w, h) = (spec.width, spec.height);
+    // Room for every face clipped, with six cut corners each.
+    let pool = scene.mesh.indices().len() + 6 * scene.mesh.face_count();
+    let mut buffers = FastBuffers::new(
+        scene.mesh.vertices().len(),
+        scene.mesh.face_count(),
+        baked.edges.len(),
+        w,
+        h,
+        pool,
+    );
+    let mut ws = buffers.workspace();
+    let mut renderer = Box::new(FastRenderer::<Frac, FACETS, LINES>::new());
+    let measured = Measured::run(w, h, |target, probe| {
+        renderer.render(
+            &mesh,
+            &scene.camera,
+            &scene.settings,
+            &mut ws,
+            &MonoPalette::default(),
+            target,
+            probe,
+        )
+    })?;
+    // Working RAM: the lent buffers (the pool and ids at what this frame needs:
+    // none clipped here is 0) and the active lists at this frame's peaks.
+    let stats = measured.stats;
+    let lent = ws.bytes() - std::mem::size_of_val(ws.pool) - std::mem::size_of_val(ws.ids);
+    let working = lent
+        + FastRenderer::<Frac, FACETS, LINES>::bytes_for(
+            stats.peak_faces as usize,
+            stats.peak_edges as usize,
+        );
+    Ok(measured.frame(working, scene.build_bytes))
+}

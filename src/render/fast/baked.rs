@@ -1,0 +1,242 @@
+//! Per-mesh constants of the fast engine, made once on the host (in a `build.rs`)
+//! and kept in flash: each face's Newell normal and centroid, and the compact edge
+//! list (two vertex and two face indices and the edge's kind). A frame then
+//! computes nothing that depends only on the mesh.
+
+use core::fmt;
+
+use crate::mesh::{EdgeAdjacency, EdgeKind, Mesh};
+use crate::{EdgeProblem, Error};
+
+/// The most faces and vertices the fast engine names: face ids are 16 bits
+/// (`0xFFFF` is "no face").
+pub const MAX_FAST_FACES: usize = 0xFFFF;
+
+/// A face's Newell normal and centroid, exactly as [`Mesh::face_normal`] and
+/// [`Mesh::face_centroid`] compute them (so the facing test gives the same answer
+/// as the exact engines').
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct FacePlane {
+    /// Newell normal (not normalized).
+    pub normal: [f32; 3],
+    /// Mean of the face's corners.
+    pub centroid: [f32; 3],
+}
+
+/// One edge of the compact edge list: 10 bytes instead of [`MeshEdge`]'s 24.
+///
+/// [`MeshEdge`]: crate::mesh::MeshEdge
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct CompactEdge {
+    /// Lower vertex index.
+    pub a: u16,
+    /// Higher vertex index.
+    pub b: u16,
+    /// The two lowest-numbered faces using it (equal for a boundary edge).
+    pub faces: [u16; 2],
+    /// What the edge is.
+    pub kind: EdgeKind,
+}
+
+impl CompactEdge {
+    /// A placeholder for lent buffers.
+    pub const EMPTY: Self = Self {
+        a: 0,
+        b: 0,
+        faces: [0; 2],
+        kind: EdgeKind::Inert,
+    };
+}
+
+impl Default for CompactEdge {
+    fn default() -> Self {
+        Self::EMPTY
+    }
+}
+
+/// A mesh with its per-mesh constants, checked once: what the fast engine draws.
+#[derive(Debug, Clone, Copy)]
+pub struct BakedMesh<'a> {
+    mesh: Mesh<'a>,
+    planes: &'a [FacePlane],
+    edges: &'a [CompactEdge],
+    closed: bool,
+}
+
+impl<'a> BakedMesh<'a> {
+    /// Writes the per-mesh constants of `mesh` (whose edge list is `adjacency`) into
+    /// `planes` (one per face) and `edges` (one per edge of `adjacency`). Run on the
+    /// host, in a `build.rs`; [`BakedSource`] prints the result as Rust statics.
+    /// Too small a buffer is `CapacityExceeded`; more than [`MAX_FAST_FACES`] faces or
+    /// vertices is `TooManyFaces`.
+    pub fn bake(
+        mesh: &Mesh<'_>,
+        adjacency: &EdgeAdjacency<'_>,
+        planes: &mut [FacePlane],
+        edges: &mut [CompactEdge],
+    ) -> Result<(), Error> {
+        check_counts(mesh)?;
+        let faces = mesh.face_count();
+        let all = adjacency.edges();
+        need(faces, planes.len())?;
+        need(all.len(), edges.len())?;
+        for (f, slot) in planes.iter_mut().enumerate().take(faces) {
+            *slot = FacePlane {
+                normal: mesh.face_normal(f),
+                centroid: mesh.face_centroid(f),
+            };
+        }
+        for (e, slot) in all.iter().zip(edges.iter_mut()) {
+            // check_counts bounds both indices by 0xFFFF.
+            *slot = CompactEdge {
+                a: e.a as u16,
+                b: e.b as u16,
+                faces: [e.faces[0] as u16, e.faces[1] as u16],
+                kind: e.kind,
+            };
+        }
+        Ok(())
+    }
+
+    /// The baked mesh, checked in one pass: one plane per face, equal bit for bit to
+    /// the face's normal and centroid; every edge's ends and faces in range, `a < b`,
+    /// and a kind that agrees with its faces (else `BadEdgeList`). `closed` is whether
+    /// every edge has two faces (for `Cull::Auto`).
+    pub fn new(
+        mesh: Mesh<'a>,
+        planes: &'a [FacePlane],
+        edges: &'a [CompactEdge],
+    ) -> Result<Self, Error> {
+        check_counts(&mesh)?;
+        let faces = mesh.face_count();
+        if planes.len() != faces {
+            return Err(Error::BadFacePlanes {
+                face: planes.len().min(faces),
+            });
+        }
+        for (f, p) in planes.iter().enumerate() {
+            let same = |a: [f32; 3], b: [f32; 3]| a.map(f32::to_bits) == b.map(f32::to_bits);
+            if !same(p.normal, mesh.face_normal(f)) || !same(p.centroid, mesh.face_centroid(f)) {
+                return Err(Error::BadFacePlanes { face: f });
+            }
+        }
+        let vertices = mesh.vertices().len();
+        let mut closed = true;
+        for (i, e) in edges.iter().enumerate() {
+            let bad = |problem| Err(Error::BadEdgeList { edge: i, problem });
+            if usize::from(e.b) >= vertices {
+                return bad(EdgeProblem::EndOutOfRange);
+            }
+            if e.a >= e.b {
+                return bad(EdgeProblem::EndsNotAscending);
+            }
+            if e.faces.iter().any(|&f| usize::from(f) >= faces) {
+                return bad(EdgeProblem::FaceOutOfRange);
+            }
+            let single = e.faces[0] == e.faces[1];
+            if single != (e.kind == EdgeKind::Boundary) {
+                return bad(EdgeProblem::FacesDisagree);
+            }
+            closed &= e.kind != EdgeKind::Boundary && e.kind != EdgeKind::NonManifold;
+        }
+        Ok(Self {
+            mesh,
+            planes,
+            edges,
+            closed,
+        })
+    }
+
+    /// The mesh.
+    pub fn mesh(&self) -> &Mesh<'a> {
+        &self.mesh
+    }
+
+    /// One plane per face.
+    pub fn planes(&self) -> &'a [FacePlane] {
+        self.planes
+    }
+
+    /// The compact edge list.
+    pub fn edges(&self) -> &'a [CompactEdge] {
+        self.edges
+    }
+
+    /// Is every edge used by exactly two faces?
+    pub fn is_closed(&self) -> bool {
+        self.closed
+    }
+}
+
+fn need(needed: usize, capacity: usize) -> Result<(), Error> {
+    if needed > capacity {
+        return Err(Error::CapacityExceeded { needed, capacity });
+    }
+    Ok(())
+}
+
+fn check_counts(mesh: &Mesh<'_>) -> Result<(), Error> {
+    let most = mesh.face_count().max(mesh.vertices().len());
+    if most > MAX_FAST_FACES {
+        return Err(Error::TooManyFaces {
+            faces: most,
+            max: MAX_FAST_FACES,
+        });
+    }
+    Ok(())
+}
+
+/// Baked constants printed as Rust source: `pub static {NAME}_PLANES` and
+/// `pub static {NAME}_EDGES`, for a `build.rs` to write into `OUT_DIR`.
+#[derive(Debug, Clone, Copy)]
+pub struct BakedSource<'a> {
+    /// Prefix of the statics' names.
+    pub name: &'a str,
+    /// The planes [`BakedMesh::bake`] wrote.
+    pub planes: &'a [FacePlane],
+    /// The edges it wrote.
+    pub edges: &'a [CompactEdge],
+}
+
+impl fmt::Display for BakedSource<'_> {
+    fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let name = self.name;
+        writeln!(
+            out,
+            "/// Face normals and centroids, baked on the host by `BakedMesh::bake`."
+        )?;
+        writeln!(
+            out,
+            "pub static {name}_PLANES: [pbuffer::render::FacePlane; {}] = [",
+            self.planes.len()
+        )?;
+        // `{:?}` prints the shortest decimal that reads back to the same f32.
+        for p in self.planes {
+            writeln!(
+                out,
+                "    pbuffer::render::FacePlane {{ normal: {:?}, centroid: {:?} }},",
+                p.normal, p.centroid
+            )?;
+        }
+        writeln!(out, "];")?;
+        writeln!(
+            out,
+            "/// The compact edge list, baked on the host by `BakedMesh::bake`."
+        )?;
+        writeln!(
+            out,
+            "pub static {name}_EDGES: [pbuffer::render::CompactEdge; {}] = [",
+            self.edges.len()
+        )?;
+        for e in self.edges {
+            writeln!(
+                out,
+                "    pbuffer::render::CompactEdge {{ a: {}, b: {}, faces: {:?}, kind: pbuffer::mesh::EdgeKind::{:?} }},",
+                e.a, e.b, e.faces, e.kind
+            )?;
+        }
+        writeln!(out, "];")
+    }
+}

@@ -1,0 +1,262 @@
+//! Active facets: the faces (or, for a bent face, its fan triangles) that cross
+//! the current row, each with its depth plane, and the row they fill.
+//!
+//! A facet whose corners fall monotonically in y from one top corner to one bottom
+//! corner (every triangle, every convex polygon) keeps two edge steppers, one per
+//! chain: each row is one span between their crossings. Any other polygon is
+//! filled by the even-odd rule from all its edges' crossings, made afresh each row
+//! (rare: concave faces). The row is `u32`s, `depth << 16 | (0xFFFF - face)`, so
+//! one unsigned compare takes the nearer face, and at equal depth the lower index.
+
+use heapless::Vec;
+
+use super::clip::CLIP_CORNERS;
+use super::step::{crossing, row_at, EdgeStep};
+use super::view::FastVertex;
+use crate::Error;
+
+/// Most corners of a face the fast engine draws without clipping; more is
+/// `CapacityExceeded` (for the even-odd path's crossings).
+pub const MAX_CORNERS: usize = 128;
+
+/// Where a facet's corners are.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Corners {
+    /// Corners of the mesh face, through the vertex cache.
+    Face,
+    /// Fan triangle `(c0, ck, ck+1)` of the face.
+    Fan(u8),
+    /// `len` clipped corners at `start` in the clip pool.
+    Pool { start: u16, len: u8 },
+}
+
+/// One facet crossing the current row.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) struct Facet {
+    /// `0xFFFF - face`: the low half of the row entries it writes.
+    pub id: u32,
+    pub face: u16,
+    pub corners: Corners,
+    /// Its first row, and the row after its last.
+    first: i32,
+    pub end: i32,
+    /// Depth per pixel right and per row down (16.16, wrapping), and at column
+    /// `xa` of the current row.
+    a: i32,
+    b: i32,
+    drow: u32,
+    xa: i32,
+    /// Monotone: the two chains' current edges and their lower corners' local
+    /// indices (`chain[0]` walks corners forward, `chain[1]` backward).
+    chain: [EdgeStep; 2],
+    at: [u8; 2],
+    bottom: u8,
+    n: u8,
+    monotone: bool,
+}
+
+/// Reads corner `i` of a facet.
+pub(super) trait CornerSource {
+    fn corner(&self, facet_corners: Corners, face: u16, i: usize) -> FastVertex;
+}
+
+/// Plane and shape of a facet from its `n` corners.
+pub(super) fn facet<C: CornerSource>(
+    src: &C,
+    face: u16,
+    corners: Corners,
+    n: usize,
+    row: i32,
+    s: u32,
+) -> Option<Facet> {
+    let get = |i: usize| src.corner(corners, face, i);
+    let (mut top, mut bottom, mut ymin, mut ymax) = (0usize, 0usize, i32::MAX, i32::MIN);
+    // Local minima of y around the cycle (flat runs skipped): 1 when monotone.
+    let (mut minima, mut last_dir, mut first_dir) = (0u32, 0i32, 0i32);
+    for i in 0..n {
+        let y = i32::from(get(i).y);
+        if y < ymin {
+            (ymin, top) = (y, i);
+        }
+        if y > ymax {
+            (ymax, bottom) = (y, i);
+        }
+        let dir = (i32::from(get((i + 1) % n).y) - y).signum();
+        if dir != 0 {
+            if last_dir < 0 && dir > 0 {
+                minima += 1;
+            }
+            if first_dir == 0 {
+                first_dir = dir;
+            }
+            last_dir = dir;
+        }
+    }
+    if last_dir < 0 && first_dir > 0 {
+        minima += 1;
+    }
+    let end = row_at(2 * ymax, s);
+    if row >= end || ymin == ymax {
+        return None;
+    }
+    let (a, b, drow, xa) = plane(&get, n, row, s);
+    let mut f = Facet {
+        id: 0xFFFF - u32::from(face),
+        face,
+        corners,
+        first: row_at(2 * ymin, s),
+        end,
+        a,
+        b,
+        drow,
+        xa,
+        chain: [EdgeStep::default(); 2],
+        at: [top as u8; 2],
+        bottom: bottom as u8,
+        n: n as u8,
+        monotone: minima <= 1,
+    };
+    if f.monotone {
+        // Chains start empty (end = i32::MIN) and are filled on the first row.
+        f.chain = [EdgeStep::spent(i32::MIN); 2];
+    }
+    Some(f)
+}
+
+/// The depth plane through the fan triangle of largest screen area: steps per
+/// pixel and per row, and the depth at the centre of column `xa` of `row`.
+fn plane(get: &impl Fn(usize) -> FastVertex, n: usize, row: i32, s: u32) -> (i32, i32, u32, i32) {
+    let v0 = get(0);
+    let (x0, y0) = (f32::from(v0.x), f32::from(v0.y));
+    let (mut best, mut tri) = (0.0f32, (1usize, 2usize));
+    for i in 1..n.saturating_sub(1) {
+        let (p, q) = (get(i), get(i + 1));
+        let det = (f32::from(p.x) - x0) * (f32::from(q.y) - y0)
+            - (f32::from(q.x) - x0) * (f32::from(p.y) - y0);
+        if det.abs() > best.abs() {
+            (best, tri) = (det, (i, i + 1));
+        }
+    }
+    let xa = i32::from(v0.x) >> s;
+    let ya = i32::from(v0.y) >> s;
+    if best == 0.0 {
+        return (0, 0, v0.d, xa);
+    }
+    let (p, q) = (get(tri.0), get(tri.1));
+    let (dx1, dy1) = (f32::from(p.x) - x0, f32::from(p.y) - y0);
+    let (dx2, dy2) = (f32::from(q.x) - x0, f32::from(q.y) - y0);
+    // Depth differences as f32: 16.16 values below 2^32, so the difference is exact
+    // to 2^-8 of a depth unit.
+    let dd1 = p.d as f32 - v0.d as f32;
+    let dd2 = q.d as f32 - v0.d as f32;
+    let inv = 1.0 / best;
+    let unit = (1u32 << s) as f32;
+    let a_sub = (dd1 * dy2 - dd2 * dy1) * inv;
+    let b_sub = (dd2 * dx1 - dd1 * dx2) * inv;
+    // From corner 0 to the centre of its pixel, in 2^-S px.
+    let ox = (xa as f32 + 0.5) * unit - x0;
+    let oy = (ya as f32 + 0.5) * unit - y0;
+    let c = v0.d.wrapping_add((a_sub * ox + b_sub * oy) as i32 as u32);
+    let (a, b) = ((a_sub * unit) as i32, (b_sub * unit) as i32);
+    let drow = c.wrapping_add(b.wrapping_mul(row - ya) as u32);
+    (a, b, drow, xa)
+}
+
+impl Facet {
+    /// The steepest depth change per pixel, in whole depth units (saturating).
+    pub fn slope(&self) -> u16 {
+        let most = self.a.unsigned_abs().max(self.b.unsigned_abs()) >> 16;
+        most.min(u32::from(u16::MAX)) as u16
+    }
+
+    /// Fills `row` (the entries of screen row `y`, `width` of them) with this
+    /// facet's span(s) where nearer, then steps to the next row. Returns the spans
+    /// filled.
+    pub fn fill_row<C: CornerSource>(
+        &mut self,
+        src: &C,
+        y: i32,
+        s: u32,
+        row: &mut [u32],
+    ) -> Result<u32, Error> {
+        let mut spans = 0;
+        if y < self.first {
+        } else if self.monotone {
+            let mut xs = [0i32; 2];
+            for (c, x) in xs.iter_mut().enumerate() {
+                while self.chain[c].end <= y {
+                    if self.at[c] == self.bottom && self.chain[c].end != i32::MIN {
+                        break;
+                    }
+                    let n = usize::from(self.n);
+                    let from = usize::from(self.at[c]);
+                    let to = if c == 0 { (from + 1) % n } else { (from + n - 1) % n };
+                    self.at[c] = to as u8;
+                    let (a, b) = (
+                        src.corner(self.corners, self.face, from).half(),
+                        src.corner(self.corners, self.face, to).half(),
+                    );
+                    self.chain[c] = EdgeStep::new(a, b, y, s).unwrap_or(EdgeStep::spent(y));
+                    if to == usize::from(self.bottom) && self.chain[c].end <= y {
+                        break;
+                    }
+                }
+                *x = self.chain[c].pixel(s);
+            }
+            if self.chain[0].end > y && self.chain[1].end > y {
+                spans += self.span(xs[0].min(xs[1]), xs[0].max(xs[1]), row);
+                self.chain[0].next_row();
+                self.chain[1].next_row();
+            }
+        } else {
+            let mut xs: Vec<i32, MAX_CORNERS> = Vec::new();
+            let n = usize::from(self.n);
+            for i in 0..n {
+                let a = src.corner(self.corners, self.face, i).half();
+                let b = src.corner(self.corners, self.face, (i + 1) % n).half();
+                if let Some(x) = crossing(a, b, y, s) {
+                    xs.push(x).map_err(|_| Error::CapacityExceeded {
+                        needed: n,
+                        capacity: MAX_CORNERS,
+                    })?;
+                }
+            }
+            xs.sort_unstable();
+            for pair in xs.chunks_exact(2) {
+                if let [x0, x1] = *pair {
+                    spans += self.span(x0, x1, row);
+                }
+            }
+        }
+        self.drow = self.drow.wrapping_add(self.b as u32);
+        Ok(spans)
+    }
+
+    /// Depth-tests pixels `x0..x1` of the row.
+    #[inline(always)]
+    fn span(&self, x0: i32, x1: i32, row: &mut [u32]) -> u32 {
+        let x0 = x0.max(0);
+        let x1 = x1.min(row.len() as i32);
+        if x0 >= x1 {
+            return 0;
+        }
+        let mut d = self
+            .drow
+            .wrapping_add(self.a.wrapping_mul(x0 - self.xa) as u32);
+        let (id, a) = (self.id, self.a as u32);
+        // x0 < x1 <= row.len(): the range is in bounds.
+        if let Some(cells) = row.get_mut(x0 as usize..x1 as usize) {
+            for cell in cells {
+                let v = (d & 0xFFFF_0000) | id;
+                if v > *cell {
+                    *cell = v;
+                }
+                d = d.wrapping_add(a);
+            }
+        }
+        1
+    }
+}
+
+/// Corners of a clipped polygon kept for the frame.
+pub(super) type ClipPolygon = Vec<FastVertex, CLIP_CORNERS>;

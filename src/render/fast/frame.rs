@@ -1,0 +1,455 @@
+//! The fast engine's frame: set-up (vertex cache, facing, per-row lists), then one
+//! row at a time: facets fill the row, lines are tested against it, spans go out.
+
+use fixed::types::extra::LeEqU32;
+
+use super::*;
+
+/// What the set-up found, for the row loop and `Stats`.
+struct Lists {
+    faces_drawn: u32,
+    feature_edges: u32,
+}
+
+impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, FACETS, LINES> {
+    /// The frame loop.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn render_rows<K: SpanSink, P: Palette<Color = K::Color>, R: FrameProbe>(
+        &mut self,
+        baked: &BakedMesh<'_>,
+        camera: &Camera,
+        settings: &Settings,
+        ws: &mut FastWorkspace<'_>,
+        palette: &P,
+        sink: &mut K,
+        probe: &mut R,
+    ) -> Result<Stats, Error<K::Error>> {
+        let viewport = sink.viewport();
+        let s = Frac::U32;
+        self.check(baked, viewport, ws, R::ACTIVE)
+            .map_err(Error::widen)?;
+        let mesh = baked.mesh();
+        let (width, height) = (usize::from(viewport.width), usize::from(viewport.height));
+        let map = ScreenMap::new(camera, viewport, s, mesh.vertices());
+        for (slot, p) in ws.vertices.iter_mut().zip(mesh.vertices()) {
+            *slot = map.vertex(*p);
+        }
+        let lists = self.lists(baked, &map, settings, ws, viewport);
+        let mut stats = Stats {
+            faces: mesh.face_count() as u32,
+            faces_drawn: lists.faces_drawn,
+            feature_edges: lists.feature_edges,
+            bands: u32::from(viewport.height),
+            band_rows: 1,
+            depth_buffer_bytes: (width * 4) as u32,
+            ..Stats::default()
+        };
+        self.facets.clear();
+        self.lines.clear();
+        let FastWorkspace {
+            vertices,
+            face_links,
+            line_links,
+            heads,
+            row,
+            masks,
+            pool,
+            ids,
+            slopes,
+            ..
+        } = ws;
+        let (face_heads, line_heads) = heads.split_at(height);
+        let row = row.get_mut(..width).unwrap_or_default();
+        let words = width.div_ceil(32);
+        let masks = masks.get_mut(..2 * words).unwrap_or_default();
+        let mut pool_used = 0usize;
+        let mut shades = Shades {
+            planes: baked.planes(),
+            viewpoint: map.viewpoint,
+            last: (NONE, 0),
+        };
+        let depth = settings.mode.needs_depth();
+        let test = if depth { LineTest::Row } else { LineTest::None };
+        for y in 0..height {
+            let yi = y as i32;
+            if depth {
+                let mut f = face_heads.get(y).copied().unwrap_or(NONE);
+                while f != NONE {
+                    pool_used = self
+                        .activate(baked, &map, vertices, pool, pool_used, slopes, f, yi)
+                        .map_err(Error::widen)?;
+                    f = face_links.get(usize::from(f)).copied().unwrap_or(NONE);
+                }
+                stats.peak_faces = stats.peak_faces.max(self.facets.len() as u32);
+                row.fill(0);
+                let src = Source {
+                    mesh,
+                    cache: vertices,
+                    pool,
+                };
+                let mut i = 0;
+                while let Some(facet) = self.facets.get_mut(i) {
+                    stats.spans += facet.fill_row(&src, yi, s, row).map_err(Error::widen)?;
+                    if yi + 1 >= facet.end {
+                        self.facets.swap_remove(i);
+                    } else {
+                        i += 1;
+                    }
+                }
+            }
+            masks.fill(0);
+            if settings.mode.draws_lines() {
+                let mut e = line_heads.get(y).copied().unwrap_or(NONE);
+                while e != NONE {
+                    self.activate_line(baked, &map, vertices, e, &mut stats)
+                        .map_err(Error::widen)?;
+                    e = line_links.get(usize::from(e)).copied().unwrap_or(NONE);
+                }
+                let (visible, hidden) = masks.split_at_mut(words);
+                let cache: &[FastVertex] = vertices;
+                let beside = |face: u16, ends: &[(i16, i16); 2], e: (i32, i32)| {
+                    let corners = mesh.face(usize::from(face));
+                    let corner = |v: &u32| cache.get(*v as usize).copied().unwrap_or_default();
+                    corners.iter().any(|v| {
+                        let p = corner(v);
+                        p.inside() && ends.contains(&(p.x, p.y))
+                    }) && corners.iter().all(|v| corner(v).inside())
+                        && !covers(corners.iter().map(|v| corner(v).half()), e)
+                };
+                let mut i = 0;
+                while let Some(line) = self.lines.get_mut(i) {
+                    if line.row(yi, s, test, row, slopes, &beside, visible, hidden) {
+                        i += 1;
+                    } else {
+                        self.lines.swap_remove(i);
+                    }
+                }
+            }
+            let (visible, hidden) = masks.split_at(words);
+            if R::ACTIVE {
+                for (id, &cell) in ids.iter_mut().zip(row.iter()) {
+                    *id = if depth {
+                        (0xFFFF - (cell & 0xFFFF) as u16).wrapping_add(1)
+                    } else {
+                        0
+                    };
+                }
+                probe.row(y as u16, ids.get(..width).unwrap_or(&[]), visible, hidden);
+            }
+            if !depth {
+                row.fill(0);
+            }
+            stats.spans += emit_row(
+                y as u16,
+                settings,
+                row,
+                visible,
+                hidden,
+                palette,
+                &mut shades,
+                sink,
+            )
+            .map_err(Error::Target)?;
+        }
+        sink.flush().map_err(Error::Target)?;
+        Ok(stats)
+    }
+
+    /// The lent storage and the frame's limits.
+    fn check(
+        &self,
+        baked: &BakedMesh<'_>,
+        viewport: Viewport,
+        ws: &FastWorkspace<'_>,
+        probe: bool,
+    ) -> Result<(), Error> {
+        let s = Frac::U32;
+        if s > FAST_MAX_SUBPIXEL_BITS {
+            return Err(Error::SubpixelTooFine {
+                bits: s,
+                max: FAST_MAX_SUBPIXEL_BITS,
+            });
+        }
+        let (w, h) = (viewport.width, viewport.height);
+        if i32::from(w.max(h)) > guard_px(s) {
+            return Err(Error::ViewportTooLarge {
+                width: u32::from(w),
+                height: u32::from(h),
+            });
+        }
+        let mesh = baked.mesh();
+        let faces = mesh.face_count();
+        let (w, h) = (usize::from(w), usize::from(h));
+        need(mesh.vertices().len(), ws.vertices.len())?;
+        need(faces.div_ceil(32), ws.facing.len())?;
+        need(faces, ws.face_links.len())?;
+        need(faces, ws.slopes.len())?;
+        need(baked.edges().len(), ws.line_links.len())?;
+        need(2 * h, ws.heads.len())?;
+        need(w, ws.row.len())?;
+        need(2 * w.div_ceil(32), ws.masks.len())?;
+        if probe {
+            need(w, ws.ids.len())?;
+        }
+        Ok(())
+    }
+
+    /// Facing bits, and the per-row lists of drawn faces and feature lines.
+    fn lists(
+        &self,
+        baked: &BakedMesh<'_>,
+        map: &ScreenMap,
+        settings: &Settings,
+        ws: &mut FastWorkspace<'_>,
+        viewport: Viewport,
+    ) -> Lists {
+        let mesh = baked.mesh();
+        let s = map.s;
+        let (width, height) = (i32::from(viewport.width), i32::from(viewport.height));
+        let cull = match settings.cull {
+            Cull::On => true,
+            Cull::Off => false,
+            Cull::Auto => baked.is_closed(),
+        };
+        let h = usize::from(viewport.height);
+        let (face_heads, line_heads) = ws.heads.split_at_mut(h);
+        face_heads.fill(NONE);
+        line_heads.get_mut(..h).unwrap_or_default().fill(NONE);
+        let mut lists = Lists {
+            faces_drawn: 0,
+            feature_edges: 0,
+        };
+        let depth = settings.mode.needs_depth();
+        for (f, plane) in baked.planes().iter().enumerate() {
+            let facing = faces_view(plane, &map.viewpoint);
+            set_bit(ws.facing, f, facing);
+            if cull && !facing {
+                continue;
+            }
+            // Rows and columns the face can reach; a face to be clipped starts at row 0.
+            let (mut lo, mut hi, mut left, mut right, mut clipped) =
+                (i32::MAX, i32::MIN, i32::MAX, i32::MIN, false);
+            for &v in mesh.face(f) {
+                let p = ws.vertices.get(v as usize).copied().unwrap_or_default();
+                clipped |= !p.inside();
+                let (x, y) = p.half();
+                (lo, hi) = (lo.min(y), hi.max(y));
+                (left, right) = (left.min(x), right.max(x));
+            }
+            let first = if clipped {
+                0
+            } else {
+                let (first, end) = (step::row_at(lo, s), step::row_at(hi, s));
+                let (c0, c1) = (step::row_at(left, s), step::row_at(right, s));
+                if first >= height || end <= 0 || first >= end || c0 >= width || c1 <= 0 {
+                    continue;
+                }
+                first.max(0)
+            };
+            lists.faces_drawn += 1;
+            if !depth {
+                continue;
+            }
+            if let (Some(head), Some(link)) =
+                (face_heads.get_mut(first as usize), ws.face_links.get_mut(f))
+            {
+                *link = *head;
+                *head = f as u16;
+            }
+        }
+        if !settings.mode.draws_lines() {
+            return lists;
+        }
+        for (e, edge) in baked.edges().iter().enumerate() {
+            let feature = match edge.kind {
+                EdgeKind::Boundary | EdgeKind::NonManifold | EdgeKind::Crease => true,
+                EdgeKind::Inert => false,
+                EdgeKind::Smooth => {
+                    let [f, g] = edge.faces;
+                    bit(ws.facing, usize::from(f)) != bit(ws.facing, usize::from(g))
+                }
+            };
+            if !feature {
+                continue;
+            }
+            lists.feature_edges += 1;
+            let a = ws.vertices.get(usize::from(edge.a)).copied().unwrap_or_default();
+            let b = ws.vertices.get(usize::from(edge.b)).copied().unwrap_or_default();
+            let first = if a.inside() && b.inside() {
+                // Pixels lie in the rows and columns of the ends' pixels.
+                let (lo, hi) = (a.y.min(b.y) >> s, a.y.max(b.y) >> s);
+                let (l, r) = (a.x.min(b.x) >> s, a.x.max(b.x) >> s);
+                if i32::from(lo) >= height || hi < 0 || i32::from(l) >= width || r < 0 {
+                    continue;
+                }
+                i32::from(lo.max(0))
+            } else {
+                0
+            };
+            if let (Some(head), Some(link)) =
+                (line_heads.get_mut(first as usize), ws.line_links.get_mut(e))
+            {
+                *link = *head;
+                *head = e as u16;
+            }
+        }
+        lists
+    }
+
+    /// Makes the facets of face `f` at row `y`: clipped into the pool when a corner
+    /// is outside, else the face (or its fan triangles when bent). Returns the pool
+    /// entries used.
+    #[allow(clippy::too_many_arguments)]
+    fn activate(
+        &mut self,
+        baked: &BakedMesh<'_>,
+        map: &ScreenMap,
+        vertices: &[FastVertex],
+        pool: &mut [FastVertex],
+        mut pool_used: usize,
+        slopes: &mut [u16],
+        f: u16,
+        y: i32,
+    ) -> Result<usize, Error> {
+        let mesh = baked.mesh();
+        let corners = mesh.face(usize::from(f));
+        let n = corners.len();
+        let clipped = corners
+            .iter()
+            .any(|&v| vertices.get(v as usize).is_none_or(|p| !p.inside()));
+        let full = Error::CapacityExceeded {
+            needed: FACETS + 1,
+            capacity: FACETS,
+        };
+        if clipped {
+            let mut poly = ClipPolygon::new();
+            let positions = mesh.vertices();
+            let points = corners
+                .iter()
+                .map(|&v| positions.get(v as usize).copied().unwrap_or_default());
+            if !clip_polygon(map, points, &mut poly)? {
+                return Ok(pool_used);
+            }
+            let end = pool_used + poly.len();
+            let room = pool.len();
+            let Some(slots) = pool.get_mut(pool_used..end) else {
+                return Err(Error::CapacityExceeded {
+                    needed: end,
+                    capacity: room,
+                });
+            };
+            slots.copy_from_slice(&poly);
+            let corners = Corners::Pool {
+                start: pool_used as u16,
+                len: poly.len() as u8,
+            };
+            let src = Source {
+                mesh,
+                cache: vertices,
+                pool,
+            };
+            pool_used = end;
+            if let Some(facet) = facet(&src, f, corners, poly.len(), y, map.s) {
+                set_slope(slopes, f, facet.slope());
+                self.facets.push(facet).map_err(|_| full)?;
+            }
+            return Ok(pool_used);
+        }
+        if n > MAX_CORNERS {
+            return Err(Error::CapacityExceeded {
+                needed: n,
+                capacity: MAX_CORNERS,
+            });
+        }
+        let src = Source {
+            mesh,
+            cache: vertices,
+            pool,
+        };
+        if n > 3 && mesh.kept_planarity(usize::from(f)) == Some(false) {
+            let mut slope = 0;
+            for k in 1..n - 1 {
+                if let Some(facet) = facet(&src, f, Corners::Fan(k as u8), 3, y, map.s) {
+                    slope = slope.max(facet.slope());
+                    self.facets.push(facet).map_err(|_| full)?;
+                }
+            }
+            set_slope(slopes, f, slope);
+        } else if let Some(facet) = facet(&src, f, Corners::Face, n, y, map.s) {
+            set_slope(slopes, f, facet.slope());
+            self.facets.push(facet).map_err(|_| full)?;
+        }
+        Ok(pool_used)
+    }
+
+    /// Makes the active line of edge `e` (clipped when an end is outside).
+    fn activate_line(
+        &mut self,
+        baked: &BakedMesh<'_>,
+        map: &ScreenMap,
+        vertices: &[FastVertex],
+        e: u16,
+        stats: &mut Stats,
+    ) -> Result<(), Error> {
+        let Some(edge) = baked.edges().get(usize::from(e)) else {
+            return Ok(());
+        };
+        let a = vertices.get(usize::from(edge.a)).copied().unwrap_or_default();
+        let b = vertices.get(usize::from(edge.b)).copied().unwrap_or_default();
+        let (ea, eb) = (a, b);
+        let ends = if a.inside() && b.inside() {
+            Some((a, b))
+        } else {
+            let positions = baked.mesh().vertices();
+            let p = |v: u16| positions.get(usize::from(v)).copied().unwrap_or_default();
+            clip_segment(map, p(edge.a), p(edge.b))
+        };
+        if let Some((a, b)) = ends {
+            let ends = [(ea.x, ea.y), (eb.x, eb.y)];
+            if let Some(line) = ActiveLine::new(a, b, edge.faces, ends, map.s) {
+                self.lines.push(line).map_err(|_| Error::CapacityExceeded {
+                    needed: LINES + 1,
+                    capacity: LINES,
+                })?;
+                stats.peak_edges = stats.peak_edges.max(self.lines.len() as u32);
+            }
+        }
+        Ok(())
+    }
+}
+
+fn set_slope(slopes: &mut [u16], f: u16, slope: u16) {
+    if let Some(s) = slopes.get_mut(usize::from(f)) {
+        *s = slope;
+    }
+}
+
+/// Is point `e` (half-units) inside the polygon with corners `corners` (half-units)
+/// by the even-odd rule, a point on an edge counting as inside?
+fn covers(mut corners: impl Iterator<Item = (i32, i32)> + Clone, e: (i32, i32)) -> bool {
+    let Some(first) = corners.next() else {
+        return false;
+    };
+    let (x, y) = (i64::from(e.0), i64::from(e.1));
+    let mut inside = false;
+    let mut a = first;
+    for b in corners.chain(core::iter::once(first)) {
+        let (ay, by) = (i64::from(a.1), i64::from(b.1));
+        if (ay <= y) != (by <= y) {
+            let (lx, ly, hx, hy) = if ay < by {
+                (i64::from(a.0), ay, i64::from(b.0), by)
+            } else {
+                (i64::from(b.0), by, i64::from(a.0), ay)
+            };
+            let cross = (hx - lx) * (y - ly) - (hy - ly) * (x - lx);
+            if cross == 0 {
+                return true;
+            }
+            if cross > 0 {
+                inside = !inside;
+            }
+        }
+        a = b;
+    }
+    inside
+}

@@ -1,0 +1,215 @@
+//! The fast engine: a scan-line Z-buffer one row high, for microcontrollers.
+//!
+//! Per mesh, on the host ([`BakedMesh::bake`], in a `build.rs`): face normals and
+//! centroids and the compact edge list, kept in flash. Per frame: an `f32`
+//! transform of each vertex into an 8-byte cache entry (16-bit screen x, y with S
+//! sub-pixel bits, and a depth scaled to the depth range the frame draws); facing
+//! bits; faces and feature lines linked into per-row lists. Per row: each active
+//! facet (a face, or a fan triangle of a bent face) fills its span into one row of
+//! `u32`s, `depth << 16 | (0xFFFF - face)`, with one unsigned compare a pixel; then
+//! each active feature line's pixels in the row are tested against the finished
+//! row; then the row goes out as spans. Integer work per pixel and per row, edges
+//! stepped exactly in 32 bits, no 64-bit division anywhere in a frame. Working
+//! memory grows with one row and the active facets and lines, not with the frame.
+//!
+//! # What it bends (`CONVENTIONS.md`, "Approximate engines")
+//! It keeps the fill rule (pixel centres, top-left, even-odd, watertight shared
+//! edges), the tie rule (equal depth: the lower face index wins) and the outputs.
+//! It bends, measured against the f64 reference in `BENCHMARKS.md`:
+//! - **Depth is 16 bits** in the row (of the frame's own nearness range), and a
+//!   face's depth is one plane in 16.16 fixed point set up in `f32`: faces closer
+//!   than a depth unit, or crossing, may swap over a few pixels.
+//! - **A line pixel is tested at its pixel centre** against the face nearest
+//!   there, not at the edge point; the edge's own two faces never hide it, and
+//!   another face hides it only when nearer by more than one pixel of the line's
+//!   own depth slope plus one depth unit (instead of "strictly nearer").
+//!   A non-manifold edge's third and later faces are not its own here.
+//! - **A bent face** (not planar, [`Mesh::with_planar_faces`]) is drawn as its fan
+//!   triangles, each with its own plane: the even-odd coverage of the polygon is
+//!   their union, which differs only for a face whose fan folds over on screen.
+//!   Faces of unknown planarity are taken as planar. A clipped bent face keeps one
+//!   plane.
+//! - **Snapping in `f32`**: vertices are projected and rounded to the 2^-S grid in
+//!   `f32`, so a vertex may land one grid step from the exact engines' snap.
+//!
+//! [`Mesh::with_planar_faces`]: crate::mesh::Mesh::with_planar_faces
+
+mod baked;
+mod clip;
+mod facets;
+mod lines;
+mod row_out;
+mod step;
+mod view;
+
+use core::marker::PhantomData;
+use core::mem::size_of;
+
+use fixed::types::extra::LeEqU32;
+use heapless::Vec;
+
+pub use baked::{BakedMesh, BakedSource, CompactEdge, FacePlane, MAX_FAST_FACES};
+pub use facets::MAX_CORNERS;
+pub use view::FastVertex;
+
+use super::compose::{FrameProbe, Palette};
+use super::{Cull, Settings, Stats};
+use crate::camera::{dot, Camera};
+use crate::mesh::{bit, set_bit, EdgeKind, Viewpoint};
+use crate::{Error, SpanSink, Viewport};
+use clip::{clip_polygon, clip_segment};
+use facets::{facet, ClipPolygon, CornerSource, Corners, Facet};
+use lines::{ActiveLine, LineTest};
+use row_out::{emit_row, Shades};
+use view::{guard_px, ScreenMap};
+
+/// The most sub-pixel bits the fast engine takes (its screen coordinates are 16
+/// bits and its steppers 32).
+pub const FAST_MAX_SUBPIXEL_BITS: u32 = 6;
+
+/// End of a per-row list.
+const NONE: u16 = 0xFFFF;
+
+/// Storage the caller lends for one frame of the fast engine. Sizes: `vertices` >=
+/// the mesh's vertices; `facing` >= faces / 32 words; `face_links` >= faces;
+/// `line_links` >= edges; `heads` >= 2 x height; `row` >= width; `masks` >= 2 x
+/// ceil(width / 32); `pool` holds the corners of the frame's clipped faces (0 when
+/// nothing is clipped); `slopes` >= faces; `ids` >= width when a [`FrameProbe`] looks at the rows, else
+/// it may be empty. [`FastWorkspace::bytes`] sums them.
+#[derive(Debug)]
+pub struct FastWorkspace<'s> {
+    /// The per-frame vertex cache.
+    pub vertices: &'s mut [FastVertex],
+    /// One bit per face: faces the eye.
+    pub facing: &'s mut [u32],
+    /// Per-row lists of faces: the next face in the list of the same row.
+    pub face_links: &'s mut [u16],
+    /// Per-row lists of feature lines: the next edge in the same row's list.
+    pub line_links: &'s mut [u16],
+    /// The first face, then the first line, of each row's list.
+    pub heads: &'s mut [u16],
+    /// The row: nearest face entries.
+    pub row: &'s mut [u32],
+    /// The row's visible then hidden line masks.
+    pub masks: &'s mut [u32],
+    /// Corners of clipped faces.
+    pub pool: &'s mut [FastVertex],
+    /// Face ids of the row (1 + face, 0 none) for a probe.
+    pub ids: &'s mut [u16],
+    /// Each face's steepest depth slope this frame (for the line test's margin).
+    pub slopes: &'s mut [u16],
+}
+
+impl FastWorkspace<'_> {
+    /// Bytes of all the lent buffers.
+    pub fn bytes(&self) -> usize {
+        use core::mem::size_of_val;
+        size_of_val(self.vertices)
+            + size_of_val(self.facing)
+            + size_of_val(self.face_links)
+            + size_of_val(self.line_links)
+            + size_of_val(self.heads)
+            + size_of_val(self.row)
+            + size_of_val(self.masks)
+            + size_of_val(self.pool)
+            + size_of_val(self.ids)
+            + size_of_val(self.slopes)
+    }
+}
+
+/// The fast engine with S = `Frac` sub-pixel bits (at most
+/// [`FAST_MAX_SUBPIXEL_BITS`]), room for `FACETS` facets and `LINES` feature lines
+/// active on one row (more is `CapacityExceeded`).
+#[derive(Debug)]
+pub struct FastRenderer<Frac: LeEqU32, const FACETS: usize, const LINES: usize> {
+    facets: Vec<Facet, FACETS>,
+    lines: Vec<ActiveLine, LINES>,
+    _frac: PhantomData<Frac>,
+}
+
+impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> Default
+    for FastRenderer<Frac, FACETS, LINES>
+{
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// Reads facet corners from the vertex cache or the clip pool.
+struct Source<'a, 'm> {
+    mesh: &'a crate::mesh::Mesh<'m>,
+    cache: &'a [FastVertex],
+    pool: &'a [FastVertex],
+}
+
+impl CornerSource for Source<'_, '_> {
+    #[inline]
+    fn corner(&self, corners: Corners, face: u16, i: usize) -> FastVertex {
+        let from_face = |i: usize| {
+            let v = self.mesh.face(usize::from(face)).get(i).copied();
+            v.and_then(|v| self.cache.get(v as usize).copied())
+        };
+        match corners {
+            Corners::Face => from_face(i),
+            Corners::Fan(k) => from_face(if i == 0 { 0 } else { usize::from(k) + i - 1 }),
+            Corners::Pool { start, .. } => self.pool.get(usize::from(start) + i).copied(),
+        }
+        .unwrap_or_default()
+    }
+}
+
+fn need(needed: usize, capacity: usize) -> Result<(), Error> {
+    if needed > capacity {
+        return Err(Error::CapacityExceeded { needed, capacity });
+    }
+    Ok(())
+}
+
+/// Does the face with `plane` face `view`? The test of `Mesh::faces_viewpoint`,
+/// on the baked normal and centroid.
+fn faces_view(plane: &FacePlane, view: &Viewpoint) -> bool {
+    let toward = match view {
+        Viewpoint::Perspective { eye } => [
+            eye[0] - plane.centroid[0],
+            eye[1] - plane.centroid[1],
+            eye[2] - plane.centroid[2],
+        ],
+        Viewpoint::Orthographic { direction_to_eye } => *direction_to_eye,
+    };
+    dot(plane.normal, toward) > 0.0
+}
+
+impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, FACETS, LINES> {
+    /// Empty working memory.
+    pub const fn new() -> Self {
+        Self {
+            facets: Vec::new(),
+            lines: Vec::new(),
+            _frac: PhantomData,
+        }
+    }
+
+    /// Bytes of this engine's active lists with room for `facets` and `lines`.
+    pub const fn bytes_for(facets: usize, lines: usize) -> usize {
+        facets * size_of::<Facet>() + lines * size_of::<ActiveLine>()
+    }
+
+    /// Renders `baked` seen by `camera` into `sink`, whose viewport is the frame.
+    /// Colours come from `palette`; `probe` sees each finished row (for the `--ids`
+    /// and `--lines` outputs; `&mut ()` ignores them).
+    #[allow(clippy::too_many_arguments)]
+    pub fn render<K: SpanSink, P: Palette<Color = K::Color>, R: FrameProbe>(
+        &mut self,
+        baked: &BakedMesh<'_>,
+        camera: &Camera,
+        settings: &Settings,
+        ws: &mut FastWorkspace<'_>,
+        palette: &P,
+        sink: &mut K,
+        probe: &mut R,
+    ) -> Result<Stats, Error<K::Error>> {
+        self.render_rows(baked, camera, settings, ws, palette, sink, probe)
+    }
+}
+
+mod frame;
