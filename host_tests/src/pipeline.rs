@@ -28,8 +28,9 @@ pub const ACTIVE_EDGES: usize = 8192;
 /// collects the `--ids`/`--lines` images and the per-pixel host span sink): callgrind
 /// patterns that `report` passes as extra `--toggle-collect` options, so that
 /// collection is off while they run and the count is the library's own work.
-pub const EXCLUDED: [&str; 2] = [
+pub const EXCLUDED: [&str; 3] = [
     "*pipeline::Collect as*FrameProbe*row*",
+    "*render::fast::frame::probe_ids*",
     "*pipeline::PackedFrame as*SpanSink*fill_span*",
 ];
 

@@ -46,13 +46,18 @@ pub(super) struct Facet {
     b: i32,
     drow: u32,
     xa: i32,
-    /// Monotone: the two chains' current edges and their lower corners' local
-    /// indices (`chain[0]` walks corners forward, `chain[1]` backward).
-    chain: [EdgeStep; 2],
+    /// Monotone: the two chains' current edges (`left` walks corners forward,
+    /// `right` backward; either may be the left one on screen) and their lower
+    /// corners' local indices.
+    left: EdgeStep,
+    right: EdgeStep,
     at: [u8; 2],
     bottom: u8,
     n: u8,
     monotone: bool,
+    /// Corner positions (half-units) of a facet of up to four corners, so that
+    /// moving a chain on reads no mesh data.
+    pts: [(i16, i16); 4],
 }
 
 /// Reads corner `i` of a facet.
@@ -60,28 +65,29 @@ pub(super) trait CornerSource {
     fn corner(&self, facet_corners: Corners, face: u16, i: usize) -> FastVertex;
 }
 
-/// Plane and shape of a facet from its `n` corners.
-pub(super) fn facet<C: CornerSource>(
-    src: &C,
+/// The facet with corners `pts` (of face `face`, found again through `corners`)
+/// at `row`, or `None` when it has no row at or after `row`.
+pub(super) fn facet(
+    pts: &[FastVertex],
     face: u16,
     corners: Corners,
-    n: usize,
     row: i32,
     s: u32,
 ) -> Option<Facet> {
-    let get = |i: usize| src.corner(corners, face, i);
+    let n = pts.len();
     let (mut top, mut bottom, mut ymin, mut ymax) = (0usize, 0usize, i32::MAX, i32::MIN);
     // Local minima of y around the cycle (flat runs skipped): 1 when monotone.
     let (mut minima, mut last_dir, mut first_dir) = (0u32, 0i32, 0i32);
-    for i in 0..n {
-        let y = i32::from(get(i).y);
+    let mut prev = i32::from(pts.last()?.y);
+    for (i, p) in pts.iter().enumerate() {
+        let y = i32::from(p.y);
         if y < ymin {
             (ymin, top) = (y, i);
         }
         if y > ymax {
             (ymax, bottom) = (y, i);
         }
-        let dir = (i32::from(get((i + 1) % n).y) - y).signum();
+        let dir = (y - prev).signum();
         if dir != 0 {
             if last_dir < 0 && dir > 0 {
                 minima += 1;
@@ -91,6 +97,7 @@ pub(super) fn facet<C: CornerSource>(
             }
             last_dir = dir;
         }
+        prev = y;
     }
     if last_dir < 0 && first_dir > 0 {
         minima += 1;
@@ -99,8 +106,8 @@ pub(super) fn facet<C: CornerSource>(
     if row >= end || ymin == ymax {
         return None;
     }
-    let (a, b, drow, xa) = plane(&get, n, row, s);
-    let mut f = Facet {
+    let (a, b, drow, xa) = plane(pts, row, s);
+    Some(Facet {
         id: 0xFFFF - u32::from(face),
         face,
         corners,
@@ -110,31 +117,38 @@ pub(super) fn facet<C: CornerSource>(
         b,
         drow,
         xa,
-        chain: [EdgeStep::default(); 2],
+        // Chains start spent before any row and are set up on the first row.
+        left: EdgeStep::spent(i32::MIN),
+        right: EdgeStep::spent(i32::MIN),
         at: [top as u8; 2],
         bottom: bottom as u8,
         n: n as u8,
         monotone: minima <= 1,
-    };
-    if f.monotone {
-        // Chains start empty (end = i32::MIN) and are filled on the first row.
-        f.chain = [EdgeStep::spent(i32::MIN); 2];
-    }
-    Some(f)
+        pts: {
+            let mut q = [(0i16, 0i16); 4];
+            for (q, p) in q.iter_mut().zip(pts) {
+                *q = (p.x, p.y);
+            }
+            q
+        },
+    })
 }
 
 /// The depth plane through the fan triangle of largest screen area: steps per
 /// pixel and per row, and the depth at the centre of column `xa` of `row`.
-fn plane(get: &impl Fn(usize) -> FastVertex, n: usize, row: i32, s: u32) -> (i32, i32, u32, i32) {
-    let v0 = get(0);
+fn plane(pts: &[FastVertex], row: i32, s: u32) -> (i32, i32, u32, i32) {
+    let Some(&v0) = pts.first() else {
+        return (0, 0, 0, 0);
+    };
     let (x0, y0) = (f32::from(v0.x), f32::from(v0.y));
-    let (mut best, mut tri) = (0.0f32, (1usize, 2usize));
-    for i in 1..n.saturating_sub(1) {
-        let (p, q) = (get(i), get(i + 1));
-        let det = (f32::from(p.x) - x0) * (f32::from(q.y) - y0)
-            - (f32::from(q.x) - x0) * (f32::from(p.y) - y0);
-        if det.abs() > best.abs() {
-            (best, tri) = (det, (i, i + 1));
+    let (mut best, mut tri) = (0.0f32, (v0, v0));
+    for w in pts.get(1..).unwrap_or(&[]).windows(2) {
+        if let [p, q] = *w {
+            let det = (f32::from(p.x) - x0) * (f32::from(q.y) - y0)
+                - (f32::from(q.x) - x0) * (f32::from(p.y) - y0);
+            if det.abs() > best.abs() {
+                (best, tri) = (det, (p, q));
+            }
         }
     }
     let xa = i32::from(v0.x) >> s;
@@ -142,7 +156,7 @@ fn plane(get: &impl Fn(usize) -> FastVertex, n: usize, row: i32, s: u32) -> (i32
     if best == 0.0 {
         return (0, 0, v0.d, xa);
     }
-    let (p, q) = (get(tri.0), get(tri.1));
+    let (p, q) = tri;
     let (dx1, dy1) = (f32::from(p.x) - x0, f32::from(p.y) - y0);
     let (dx2, dy2) = (f32::from(q.x) - x0, f32::from(q.y) - y0);
     // Depth differences as f32: 16.16 values below 2^32, so the difference is exact
@@ -169,9 +183,9 @@ impl Facet {
         most.min(u32::from(u16::MAX)) as u16
     }
 
-    /// Fills `row` (the entries of screen row `y`, `width` of them) with this
-    /// facet's span(s) where nearer, then steps to the next row. Returns the spans
-    /// filled.
+    /// Fills `row` (the entries of screen row `y`) with this facet's span(s) where
+    /// nearer, then steps to the next row. Returns the spans filled.
+    #[inline(always)]
     pub fn fill_row<C: CornerSource>(
         &mut self,
         src: &C,
@@ -182,53 +196,90 @@ impl Facet {
         let mut spans = 0;
         if y < self.first {
         } else if self.monotone {
-            let mut xs = [0i32; 2];
-            for (c, x) in xs.iter_mut().enumerate() {
-                while self.chain[c].end <= y {
-                    if self.at[c] == self.bottom && self.chain[c].end != i32::MIN {
-                        break;
-                    }
-                    let n = usize::from(self.n);
-                    let from = usize::from(self.at[c]);
-                    let to = if c == 0 { (from + 1) % n } else { (from + n - 1) % n };
-                    self.at[c] = to as u8;
-                    let (a, b) = (
-                        src.corner(self.corners, self.face, from).half(),
-                        src.corner(self.corners, self.face, to).half(),
-                    );
-                    self.chain[c] = EdgeStep::new(a, b, y, s).unwrap_or(EdgeStep::spent(y));
-                    if to == usize::from(self.bottom) && self.chain[c].end <= y {
-                        break;
-                    }
-                }
-                *x = self.chain[c].pixel(s);
+            if self.left.end <= y {
+                self.next_edge(src, 0, y, s);
             }
-            if self.chain[0].end > y && self.chain[1].end > y {
-                spans += self.span(xs[0].min(xs[1]), xs[0].max(xs[1]), row);
-                self.chain[0].next_row();
-                self.chain[1].next_row();
+            if self.right.end <= y {
+                self.next_edge(src, 1, y, s);
+            }
+            if self.left.end > y && self.right.end > y {
+                let (x0, x1) = (self.left.pixel(s), self.right.pixel(s));
+                spans += self.span(x0.min(x1), x0.max(x1), row);
+                self.left.next_row();
+                self.right.next_row();
             }
         } else {
-            let mut xs: Vec<i32, MAX_CORNERS> = Vec::new();
-            let n = usize::from(self.n);
-            for i in 0..n {
-                let a = src.corner(self.corners, self.face, i).half();
-                let b = src.corner(self.corners, self.face, (i + 1) % n).half();
-                if let Some(x) = crossing(a, b, y, s) {
-                    xs.push(x).map_err(|_| Error::CapacityExceeded {
-                        needed: n,
-                        capacity: MAX_CORNERS,
-                    })?;
-                }
-            }
-            xs.sort_unstable();
-            for pair in xs.chunks_exact(2) {
-                if let [x0, x1] = *pair {
-                    spans += self.span(x0, x1, row);
-                }
-            }
+            spans += self.fill_even_odd(src, y, s, row)?;
         }
         self.drow = self.drow.wrapping_add(self.b as u32);
+        Ok(spans)
+    }
+
+    /// Moves chain `c` (0 forward, 1 backward) on to the edge that holds row `y`.
+    #[inline(never)]
+    fn next_edge<C: CornerSource>(&mut self, src: &C, c: usize, y: i32, s: u32) {
+        let n = usize::from(self.n);
+        let mut at = usize::from(if c == 0 { self.at[0] } else { self.at[1] });
+        let mut edge = if c == 0 { self.left } else { self.right };
+        while edge.end <= y {
+            if at == usize::from(self.bottom) && edge.end != i32::MIN {
+                break;
+            }
+            let to = if c == 0 { (at + 1) % n } else { (at + n - 1) % n };
+            let (a, b) = if n <= self.pts.len() {
+                let half = |i: usize| {
+                    let (x, y) = self.pts.get(i).copied().unwrap_or_default();
+                    (2 * i32::from(x), 2 * i32::from(y))
+                };
+                (half(at), half(to))
+            } else {
+                (
+                    src.corner(self.corners, self.face, at).half(),
+                    src.corner(self.corners, self.face, to).half(),
+                )
+            };
+            at = to;
+            edge = EdgeStep::new(a, b, y, s).unwrap_or(EdgeStep::spent(y));
+            if to == usize::from(self.bottom) && edge.end <= y {
+                break;
+            }
+        }
+        if c == 0 {
+            (self.at[0], self.left) = (at as u8, edge);
+        } else {
+            (self.at[1], self.right) = (at as u8, edge);
+        }
+    }
+
+    /// The even-odd fill of a polygon that is not monotone in y: every edge's
+    /// crossing of the row, made afresh, sorted, filled in pairs.
+    #[inline(never)]
+    fn fill_even_odd<C: CornerSource>(
+        &self,
+        src: &C,
+        y: i32,
+        s: u32,
+        row: &mut [u32],
+    ) -> Result<u32, Error> {
+        let mut spans = 0;
+        let mut xs: Vec<i32, MAX_CORNERS> = Vec::new();
+        let n = usize::from(self.n);
+        for i in 0..n {
+            let a = src.corner(self.corners, self.face, i).half();
+            let b = src.corner(self.corners, self.face, (i + 1) % n).half();
+            if let Some(x) = crossing(a, b, y, s) {
+                xs.push(x).map_err(|_| Error::CapacityExceeded {
+                    needed: n,
+                    capacity: MAX_CORNERS,
+                })?;
+            }
+        }
+        xs.sort_unstable();
+        for pair in xs.chunks_exact(2) {
+            if let [x0, x1] = *pair {
+                spans += self.span(x0, x1, row);
+            }
+        }
         Ok(spans)
     }
 

@@ -127,13 +127,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             }
             let (visible, hidden) = masks.split_at(words);
             if R::ACTIVE {
-                for (id, &cell) in ids.iter_mut().zip(row.iter()) {
-                    *id = if depth {
-                        (0xFFFF - (cell & 0xFFFF) as u16).wrapping_add(1)
-                    } else {
-                        0
-                    };
-                }
+                probe_ids(depth, row, ids);
                 probe.row(y as u16, ids.get(..width).unwrap_or(&[]), visible, hidden);
             }
             if !depth {
@@ -306,6 +300,56 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         map: &ScreenMap,
         vertices: &[FastVertex],
         pool: &mut [FastVertex],
+        pool_used: usize,
+        slopes: &mut [u16],
+        f: u16,
+        y: i32,
+    ) -> Result<usize, Error> {
+        let mesh = baked.mesh();
+        let corners = mesh.face(usize::from(f));
+        let n = corners.len();
+        let full = Error::CapacityExceeded {
+            needed: FACETS + 1,
+            capacity: FACETS,
+        };
+        // Triangles and quads, the common case, are gathered on the stack.
+        let mut pts = [FastVertex::ZERO; 4];
+        let mut clipped = n > pts.len();
+        for (p, &v) in pts.iter_mut().zip(corners) {
+            *p = vertices.get(v as usize).copied().unwrap_or_default();
+            clipped |= !p.inside();
+        }
+        if n <= pts.len() && !clipped {
+            let pts = pts.get(..n).unwrap_or(&[]);
+            if n == 4 && mesh.kept_planarity(usize::from(f)) == Some(false) {
+                let mut slope = 0;
+                for (k, tri) in [[0, 1, 2], [0, 2, 3]].into_iter().enumerate() {
+                    let tri = tri.map(|i| pts.get(i).copied().unwrap_or_default());
+                    if let Some(facet) = facet(&tri, f, Corners::Fan(k as u8 + 1), y, map.s) {
+                        slope = slope.max(facet.slope());
+                        self.facets.push(facet).map_err(|_| full)?;
+                    }
+                }
+                set_slope(slopes, f, slope);
+            } else if let Some(facet) = facet(pts, f, Corners::Face, y, map.s) {
+                set_slope(slopes, f, facet.slope());
+                self.facets.push(facet).map_err(|_| full)?;
+            }
+            return Ok(pool_used);
+        }
+        self.activate_other(baked, map, vertices, pool, pool_used, slopes, f, y)
+    }
+
+    /// [`activate`](Self::activate) for faces of more than four corners or with a
+    /// corner outside: clipped into the pool, or gathered into a polygon.
+    #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
+    fn activate_other(
+        &mut self,
+        baked: &BakedMesh<'_>,
+        map: &ScreenMap,
+        vertices: &[FastVertex],
+        pool: &mut [FastVertex],
         mut pool_used: usize,
         slopes: &mut [u16],
         f: u16,
@@ -343,39 +387,32 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                 start: pool_used as u16,
                 len: poly.len() as u8,
             };
-            let src = Source {
-                mesh,
-                cache: vertices,
-                pool,
-            };
             pool_used = end;
-            if let Some(facet) = facet(&src, f, corners, poly.len(), y, map.s) {
+            if let Some(facet) = facet(&poly, f, corners, y, map.s) {
                 set_slope(slopes, f, facet.slope());
                 self.facets.push(facet).map_err(|_| full)?;
             }
             return Ok(pool_used);
         }
-        if n > MAX_CORNERS {
-            return Err(Error::CapacityExceeded {
+        let mut poly: Vec<FastVertex, MAX_CORNERS> = Vec::new();
+        for &v in corners {
+            let p = vertices.get(v as usize).copied().unwrap_or_default();
+            poly.push(p).map_err(|_| Error::CapacityExceeded {
                 needed: n,
                 capacity: MAX_CORNERS,
-            });
+            })?;
         }
-        let src = Source {
-            mesh,
-            cache: vertices,
-            pool,
-        };
-        if n > 3 && mesh.kept_planarity(usize::from(f)) == Some(false) {
+        if mesh.kept_planarity(usize::from(f)) == Some(false) {
             let mut slope = 0;
             for k in 1..n - 1 {
-                if let Some(facet) = facet(&src, f, Corners::Fan(k as u8), 3, y, map.s) {
+                let tri = [0, k, k + 1].map(|i| poly.get(i).copied().unwrap_or_default());
+                if let Some(facet) = facet(&tri, f, Corners::Fan(k as u8), y, map.s) {
                     slope = slope.max(facet.slope());
                     self.facets.push(facet).map_err(|_| full)?;
                 }
             }
             set_slope(slopes, f, slope);
-        } else if let Some(facet) = facet(&src, f, Corners::Face, n, y, map.s) {
+        } else if let Some(facet) = facet(&poly, f, Corners::Face, y, map.s) {
             set_slope(slopes, f, facet.slope());
             self.facets.push(facet).map_err(|_| full)?;
         }
@@ -452,4 +489,17 @@ fn covers(mut corners: impl Iterator<Item = (i32, i32)> + Clone, e: (i32, i32)) 
         a = b;
     }
     inside
+}
+
+/// The face ids of a row for a probe (1 + face, 0 none). Out of line: the host's
+/// instruction counts leave it out, as firmware has no probe.
+#[inline(never)]
+fn probe_ids(depth: bool, row: &[u32], ids: &mut [u16]) {
+    for (id, &cell) in ids.iter_mut().zip(row.iter()) {
+        *id = if depth {
+            (0xFFFF - (cell & 0xFFFF) as u16).wrapping_add(1)
+        } else {
+            0
+        };
+    }
 }

@@ -88,6 +88,11 @@ pub(super) fn emit_row<K: SpanSink, P: Palette<Color = K::Color>>(
         DrawMode::Dashed | DrawMode::SurfacesDashed
     );
     let lines = settings.mode != DrawMode::Surfaces;
+    // A pattern whose width divides 32 has one word for the whole row.
+    let (w0, w1) = (
+        settings.pattern.word(0, u32::from(y)),
+        settings.pattern.word(32, u32::from(y)),
+    );
     let line_word = |k: usize| -> u32 {
         if !lines {
             return 0;
@@ -95,7 +100,12 @@ pub(super) fn emit_row<K: SpanSink, P: Palette<Color = K::Color>>(
         let v = visible.get(k).copied().unwrap_or(0);
         if dashed {
             let h = hidden.get(k).copied().unwrap_or(0);
-            v | (h & settings.pattern.word(32 * k as u32, u32::from(y)))
+            let pattern = if w0 == w1 {
+                w0
+            } else {
+                settings.pattern.word(32 * k as u32, u32::from(y))
+            };
+            v | (h & pattern)
         } else {
             v
         }

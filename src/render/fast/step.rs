@@ -41,8 +41,12 @@ impl Stepper {
         let r0 = (2 * k_first + 1) * h - u0;
         let (q0, r0) = div_floor(r0 * dv, du);
         let (sq, sr) = div_floor(p * dv, du);
-        let t = r0 + n * sr;
-        let (tq, tr) = div_floor(t, du);
+        // Starting at the first centre (the usual case) needs no third division.
+        let (tq, tr) = if n == 0 {
+            (0, r0)
+        } else {
+            div_floor(r0 + n * sr, du)
+        };
         Self {
             q: v0 + q0 + n * sq + tq,
             r: tr,
