@@ -1,7 +1,9 @@
 //! The firmware examples' frames, rendered on the host with the same code: the scene,
-//! engine and baseline modules of `examples/embedded` are included here by path, and
+//! engine and baseline modules of `examples/embedded` are included here by path,
 //! suzanne is parsed by the same converter (`examples/embedded/obj.rs`) that the
-//! firmware's build.rs runs. Prints one line per frame,
+//! firmware's build.rs runs, and the fast engine's constants and planarity bits are
+//! made as build.rs makes them (`BakedMesh::bake`, `pbuffer::order::planar_faces`, here
+//! at run time). Prints one line per frame,
 //!
 //! ```text
 //! frame EXAMPLE N hash=HEX
@@ -24,7 +26,7 @@ mod plain;
 mod scenes;
 
 use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
-use pbuffer::render::storage_rows;
+use pbuffer::render::{storage_rows, BakedMesh, CompactEdge, FacePlane};
 use pbuffer::{packed_len, DrawMode, PackedFramebuffer, Pattern};
 use scenes::{fnv1a64, panel, suzanne, View};
 
@@ -77,15 +79,58 @@ fn print(name: &str, n: u32, bytes: &[u8]) -> u32 {
     bytes.iter().map(|b| b.count_ones()).sum()
 }
 
-/// The engine examples, the painter and the plain f32 baseline on one scene, exactly
-/// as the firmware binaries run them (buffer sizes included).
+/// The fast engine's constants of `mesh` (edge list `adjacency`), as build.rs bakes
+/// them.
+fn bake(mesh: &Mesh<'_>, adjacency: &EdgeAdjacency<'_>) -> (Vec<FacePlane>, Vec<CompactEdge>) {
+    let mut planes = vec![FacePlane::default(); mesh.face_count()];
+    let mut edges = vec![CompactEdge::EMPTY; adjacency.edges().len()];
+    BakedMesh::bake(mesh, adjacency, &mut planes, &mut edges).expect("bakes");
+    (planes, edges)
+}
+
+/// The fast-engine examples, the scan-line examples, the painter and the plain f32
+/// baseline on one scene, exactly as the firmware binaries run them (buffer sizes
+/// included). `$edges` is the baked edge count the fast buffers are sized for.
 macro_rules! run_scene {
-    ($s:expr, $w:expr, $h:expr, $engine:ty, $buffers:ty, $v:expr, $f:expr, [$(($example:expr, $mode:expr)),*]) => {{
+    (
+        $s:expr, $w:expr, $h:expr, $v:expr, $f:expr,
+        fast: $fast_engine:ty, $fast_buffers:ty, $edges:expr, [$(($fast:expr, $fast_mode:expr)),*],
+        scanline: $engine:ty, $buffers:ty, [$(($example:expr, $mode:expr)),*]
+    ) => {{
         const N: usize = packed_len($w, $h);
         let s: &Scene = $s;
         let mesh = Mesh::new(&s.vertices, &s.indices, &s.offsets).expect("mesh");
         let mut store = vec![MeshEdge::EMPTY; s.indices.len()];
         let adjacency = edges(&mesh, &mut store);
+        // As the fast firmware: planarity bits, face planes and the compact edge list
+        // made as build.rs makes them, checked by `BakedMesh::new`.
+        let mut planar = vec![0u32; pbuffer::mesh::planar_words(mesh.face_count())];
+        pbuffer::order::planar_faces(&mesh, &mut planar).expect("sized");
+        let (planes, baked_edges) = bake(&mesh, &adjacency);
+        assert_eq!(baked_edges.len(), $edges, "the fast buffers' edge count");
+        let baked = BakedMesh::new(
+            mesh.with_planar_faces(&planar).expect("planar bits"),
+            &planes,
+            &baked_edges,
+        )
+        .expect("baked mesh");
+        let mut fast_engine = Box::new(<$fast_engine>::new());
+        $(
+            let mut b = Box::new(<$fast_buffers>::new());
+            let (mut facets, mut lines) = (0, 0);
+            for n in 0..s.frames {
+                let mut fb = Box::new(PackedFramebuffer::<{ $w }, { $h }, N>::new());
+                let view = (s.view)(n);
+                let mut ws = b.workspace();
+                let stats = scenes::render_fast(&mut fast_engine, &baked, &view, $fast_mode, &mut ws, &mut *fb)
+                    .expect("renders");
+                assert!(stats.feature_edges > 0);
+                (facets, lines) = (stats.peak_faces.max(facets), stats.peak_edges.max(lines));
+                let lit = print($fast, n, fb.as_bytes());
+                assert!(lit > 100, "{} {n}: {lit} pixels", $fast);
+            }
+            println!("peaks {}: {facets} facets, {lines} lines", $fast);
+        )*
         let mut engine = Box::new(<$engine>::new());
         $(
             let mut b = Box::new(<$buffers>::new());
@@ -156,24 +201,32 @@ fn firmware_example_frames() {
                 &suz,
                 400,
                 240,
-                scenes::Engine,
-                scenes::SuzanneBuffers,
                 507,
                 500,
+                fast: scenes::FastEngine,
+                scenes::SuzanneFastBuffers,
+                scenes::SUZANNE_EDGES,
                 [
                     ("suzanne", DrawMode::Dashed),
                     ("surfaces", DrawMode::SurfacesDashed)
-                ]
+                ],
+                scanline: scenes::Engine,
+                scenes::SuzanneBuffers,
+                [("suzanne-scanline", DrawMode::Dashed)]
             );
             run_scene!(
                 &pan,
                 128,
                 64,
-                scenes::PanelEngine,
-                scenes::PanelBuffers,
                 24,
                 16,
-                [("panel", DrawMode::Dashed)]
+                fast: scenes::PanelFastEngine,
+                scenes::PanelFastBuffers,
+                panel::EDGES,
+                [("panel", DrawMode::Dashed)],
+                scanline: scenes::PanelEngine,
+                scenes::PanelBuffers,
+                [("panel-scanline", DrawMode::Dashed)]
             );
         })
         .expect("spawn")

@@ -19,6 +19,15 @@ use crate::Error;
 /// `CapacityExceeded` (for the even-odd path's crossings).
 pub const MAX_CORNERS: usize = 128;
 
+/// Depths closer than a facet's tie are a tie, which the lower face index wins:
+/// coplanar faces get planes through different snapped corners, each up to
+/// `2^-(S+1)` px from its exact place, so their depths differ by up to about a
+/// sixteenth of a pixel's depth change (at S = 4), plus rounding: the tie is one
+/// depth unit plus `(|a| + |b|) / 16`.
+fn tie(a: i32, b: i32) -> u32 {
+    (1u32 << 16).saturating_add((a.unsigned_abs() >> 4).saturating_add(b.unsigned_abs() >> 4))
+}
+
 /// Where a facet's corners are.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) enum Corners {
@@ -40,12 +49,16 @@ pub(super) struct Facet {
     /// Its first row, and the row after its last.
     first: i32,
     pub end: i32,
+    /// Rows before this take the fast path: both chains hold them.
+    fast_until: i32,
     /// Depth per pixel right and per row down (16.16, wrapping), and at column
     /// `xa` of the current row.
     a: i32,
     b: i32,
     drow: u32,
     xa: i32,
+    /// Depths this close to the nearest so far are a tie (16.16).
+    tie: u32,
     /// Monotone: the two chains' current edges (`left` walks corners forward,
     /// `right` backward; either may be the left one on screen) and their lower
     /// corners' local indices.
@@ -113,10 +126,12 @@ pub(super) fn facet(
         corners,
         first: row_at(2 * ymin, s),
         end,
+        fast_until: i32::MIN,
         a,
         b,
         drow,
         xa,
+        tie: tie(a, b),
         // Chains start spent before any row and are set up on the first row.
         left: EdgeStep::spent(i32::MIN),
         right: EdgeStep::spent(i32::MIN),
@@ -194,19 +209,13 @@ impl Facet {
         row: &mut [u32],
     ) -> Result<u32, Error> {
         let mut spans = 0;
-        if y < self.first {
+        if y < self.fast_until {
+            spans += self.fill_span_row(s, row);
+        } else if y < self.first {
         } else if self.monotone {
-            if self.left.end <= y {
-                self.next_edge(src, 0, y, s);
-            }
-            if self.right.end <= y {
-                self.next_edge(src, 1, y, s);
-            }
-            if self.left.end > y && self.right.end > y {
-                let (x0, x1) = (self.left.pixel(s), self.right.pixel(s));
-                spans += self.span(x0.min(x1), x0.max(x1), row);
-                self.left.next_row();
-                self.right.next_row();
+            self.next_edges(src, y, s);
+            if y < self.fast_until {
+                spans += self.fill_span_row(s, row);
             }
         } else {
             spans += self.fill_even_odd(src, y, s, row)?;
@@ -215,17 +224,52 @@ impl Facet {
         Ok(spans)
     }
 
-    /// Moves chain `c` (0 forward, 1 backward) on to the edge that holds row `y`.
+    /// The span between the two chains' crossings, then both step a row.
+    #[inline(always)]
+    fn fill_span_row(&mut self, s: u32, row: &mut [u32]) -> u32 {
+        let (x0, x1) = (self.left.pixel(s), self.right.pixel(s));
+        let spans = self.span(x0.min(x1), x0.max(x1), row);
+        self.left.next_row();
+        self.right.next_row();
+        spans
+    }
+
+    /// Moves both chains on to the edges that hold row `y`; the fast path then
+    /// holds from `y` when both have one.
     #[inline(never)]
+    fn next_edges<C: CornerSource>(&mut self, src: &C, y: i32, s: u32) {
+        if self.left.end <= y {
+            self.next_edge(src, 0, y, s);
+        }
+        if self.right.end <= y {
+            self.next_edge(src, 1, y, s);
+        }
+        self.fast_until = if self.left.end > y && self.right.end > y {
+            self.left.end.min(self.right.end)
+        } else {
+            i32::MIN
+        };
+    }
+
+    /// Moves chain `c` (0 forward, 1 backward) on to the edge that holds row `y`,
+    /// or leaves it spent at the bottom corner.
+    #[inline(always)]
     fn next_edge<C: CornerSource>(&mut self, src: &C, c: usize, y: i32, s: u32) {
         let n = usize::from(self.n);
-        let mut at = usize::from(if c == 0 { self.at[0] } else { self.at[1] });
-        let mut edge = if c == 0 { self.left } else { self.right };
-        while edge.end <= y {
-            if at == usize::from(self.bottom) && edge.end != i32::MIN {
-                break;
-            }
-            let to = if c == 0 { (at + 1) % n } else { (at + n - 1) % n };
+        let bottom = usize::from(self.bottom);
+        let (mut at, mut edge) = if c == 0 {
+            (usize::from(self.at[0]), self.left)
+        } else {
+            (usize::from(self.at[1]), self.right)
+        };
+        // Rows end at the bottom corner; a chain that reached it stays spent.
+        while edge.end <= y && !(at == bottom && edge.end != i32::MIN) {
+            let to = match c {
+                0 if at + 1 == n => 0,
+                0 => at + 1,
+                _ if at == 0 => n - 1,
+                _ => at - 1,
+            };
             let (a, b) = if n <= self.pts.len() {
                 let half = |i: usize| {
                     let (x, y) = self.pts.get(i).copied().unwrap_or_default();
@@ -240,7 +284,7 @@ impl Facet {
             };
             at = to;
             edge = EdgeStep::new(a, b, y, s).unwrap_or(EdgeStep::spent(y));
-            if to == usize::from(self.bottom) && edge.end <= y {
+            if to == bottom {
                 break;
             }
         }
@@ -294,12 +338,19 @@ impl Facet {
         let mut d = self
             .drow
             .wrapping_add(self.a.wrapping_mul(x0 - self.xa) as u32);
-        let (id, a) = (self.id, self.a as u32);
+        let (id, a, tie) = (self.id, self.a as u32, self.tie);
         // x0 < x1 <= row.len(): the range is in bounds.
         if let Some(cells) = row.get_mut(x0 as usize..x1 as usize) {
             for cell in cells {
                 let v = (d & 0xFFFF_0000) | id;
-                if v > *cell {
+                let c = *cell;
+                // Within the tie of the nearest so far, the lower face index wins.
+                let wins = if id > c & 0xFFFF {
+                    v.saturating_add(tie) > c
+                } else {
+                    v > c.saturating_add(tie)
+                };
+                if wins {
                     *cell = v;
                 }
                 d = d.wrapping_add(a);

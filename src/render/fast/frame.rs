@@ -321,7 +321,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         }
         if n <= pts.len() && !clipped {
             let pts = pts.get(..n).unwrap_or(&[]);
-            if n == 4 && mesh.kept_planarity(usize::from(f)) == Some(false) {
+            if n == 4 && mesh.kept_planarity(usize::from(f)) == Some(false) && !folds(pts) {
                 let mut slope = 0;
                 for (k, tri) in [[0, 1, 2], [0, 2, 3]].into_iter().enumerate() {
                     let tri = tri.map(|i| pts.get(i).copied().unwrap_or_default());
@@ -402,7 +402,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                 capacity: MAX_CORNERS,
             })?;
         }
-        if mesh.kept_planarity(usize::from(f)) == Some(false) {
+        if mesh.kept_planarity(usize::from(f)) == Some(false) && !folds(&poly) {
             let mut slope = 0;
             for k in 1..n - 1 {
                 let tri = [0, k, k + 1].map(|i| poly.get(i).copied().unwrap_or_default());
@@ -502,4 +502,25 @@ fn probe_ids(depth: bool, row: &[u32], ids: &mut [u16]) {
             0
         };
     }
+}
+
+/// Does the fan of `pts` fold over on screen: do its triangles `(p0, pk, pk+1)` not
+/// all turn the same way? Then they overlap, and their union is not the polygon's
+/// even-odd coverage: such a face is drawn as its polygon with one plane.
+fn folds(pts: &[FastVertex]) -> bool {
+    let Some(&p0) = pts.first() else {
+        return false;
+    };
+    let (mut pos, mut neg) = (false, false);
+    for w in pts.get(1..).unwrap_or(&[]).windows(2) {
+        if let [p, q] = *w {
+            let (ax, ay) = (i32::from(p.x) - i32::from(p0.x), i32::from(p.y) - i32::from(p0.y));
+            let (bx, by) = (i32::from(q.x) - i32::from(p0.x), i32::from(q.y) - i32::from(p0.y));
+            // 16-bit coordinates: the products fit i64 exactly.
+            let cross = i64::from(ax) * i64::from(by) - i64::from(bx) * i64::from(ay);
+            pos |= cross > 0;
+            neg |= cross < 0;
+        }
+    }
+    pos && neg
 }

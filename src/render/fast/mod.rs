@@ -25,10 +25,11 @@
 //!   own depth slope plus one depth unit (instead of "strictly nearer").
 //!   A non-manifold edge's third and later faces are not its own here.
 //! - **A bent face** (not planar, [`Mesh::with_planar_faces`]) is drawn as its fan
-//!   triangles, each with its own plane: the even-odd coverage of the polygon is
-//!   their union, which differs only for a face whose fan folds over on screen.
-//!   Faces of unknown planarity are taken as planar. A clipped bent face keeps one
-//!   plane.
+//!   triangles, each with its own plane (their union is the polygon's even-odd
+//!   coverage when they all turn the same way on screen). A bent face whose fan
+//!   folds over on screen, or that is clipped, is drawn as its polygon with the
+//!   plane of its largest fan triangle. Faces of unknown planarity are taken as
+//!   planar.
 //! - **Snapping in `f32`**: vertices are projected and rounded to the 2^-S grid in
 //!   `f32`, so a vertex may land one grid step from the exact engines' snap.
 //!

@@ -4,8 +4,8 @@
 //! The scene, engine and baseline modules of `examples/embedded` are included by path
 //! (as `host_tests/tests/firmware_examples.rs` does), and each frame's measured region
 //! is what the firmware's SysTick counter brackets: clear + transform + draw (the
-//! mesh, its edge list and planarity bits are made before, as the firmware has them
-//! in flash). `FILE` is the `frame EXAMPLE N hash=HEX instructions=COUNT` lines of
+//! mesh, its edge list, planarity bits and the fast engine's baked constants are made
+//! before, as the firmware has them in flash). `FILE` is the `frame EXAMPLE N hash=HEX instructions=COUNT` lines of
 //! `scripts/firmware` (it keeps them in `target/firmware-frames.txt`, the default).
 //! A frame whose hash differs from the firmware's is reported and fails the run:
 //! the ratio is only meaningful for the same picture.
@@ -16,16 +16,19 @@ use std::process::ExitCode;
 use fixed::types::extra::U4;
 use host_tests::callgrind::{measure_all, measured_region, thousands};
 use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
+use pbuffer::render::{BakedMesh, CompactEdge, FacePlane, FastRenderer, FastWorkspace};
 use pbuffer::{packed_len, CodeFillRenderer, CodeWorkspace, DrawMode, PackedFramebuffer, Pattern};
 
 use crate::scenes::{self, fnv1a64, panel, suzanne, View};
 use crate::{obj, painter, plain};
 
 /// The examples in `scripts/firmware`'s order.
-const EXAMPLES: [&str; 7] = [
+const EXAMPLES: [&str; 9] = [
     "suzanne",
     "surfaces",
     "panel",
+    "suzanne-scanline",
+    "panel-scanline",
     "suzanne-painter",
     "suzanne-plainf32",
     "panel-painter",
@@ -88,9 +91,9 @@ fn draw(example: &str, n: u32, measure: bool) -> Vec<u8> {
     let a = arrays(scene);
     let mesh = Mesh::new(&a.vertices, &a.indices, &a.offsets).expect("mesh");
     let mut planar = vec![0u32; pbuffer::mesh::planar_words(mesh.face_count())];
-    // As the suzanne firmware: planarity made on the host, kept with the mesh (the
-    // panel's firmware keeps none).
-    let mesh = if scene == "suzanne" {
+    // As the suzanne and the (fast) panel firmware: planarity made on the host, kept
+    // with the mesh (the other panel examples keep none).
+    let mesh = if scene == "suzanne" || example == "panel" {
         pbuffer::order::planar_faces(&mesh, &mut planar).expect("sized");
         mesh.with_planar_faces(&planar).expect("planar bits")
     } else {
@@ -101,6 +104,12 @@ fn draw(example: &str, n: u32, measure: bool) -> Vec<u8> {
     let mut scratch = vec![HalfEdgeRecord::EMPTY; a.indices.len()];
     let edges =
         EdgeAdjacency::build(&mesh, 30.0, &mut weld, &mut scratch, &mut store).expect("edges");
+    // The fast engine's constants, as build.rs bakes them (the firmware checks them
+    // once at boot, outside the frames).
+    let mut planes = vec![FacePlane::default(); mesh.face_count()];
+    let mut compact = vec![CompactEdge::EMPTY; edges.edges().len()];
+    BakedMesh::bake(&mesh, &edges, &mut planes, &mut compact).expect("bakes");
+    let baked = BakedMesh::new(mesh, &planes, &compact).expect("baked mesh");
     let run = |f: &mut dyn FnMut()| {
         if measure {
             measured_region(f);
@@ -111,19 +120,24 @@ fn draw(example: &str, n: u32, measure: bool) -> Vec<u8> {
     match scene {
         "suzanne" => frame::<400, 240, { packed_len(400, 240) }>(
             example,
-            (&mesh, &edges, &suzanne::view(n)),
+            (&mesh, &edges, &baked, &suzanne::view(n)),
             run,
         ),
         _ => frame::<128, 64, { packed_len(128, 64) }>(
             example,
-            (&mesh, &edges, &panel::view(n)),
+            (&mesh, &edges, &baked, &panel::view(n)),
             run,
         ),
     }
 }
 
-/// The mesh, its edges and the camera of one frame.
-type FrameScene<'a, 'm, 'e> = (&'a Mesh<'m>, &'a EdgeAdjacency<'e>, &'a View);
+/// The mesh, its edges, the mesh baked for the fast engine and the camera of one frame.
+type FrameScene<'a, 'm, 'e> = (
+    &'a Mesh<'m>,
+    &'a EdgeAdjacency<'e>,
+    &'a BakedMesh<'m>,
+    &'a View,
+);
 
 fn frame<const W: usize, const H: usize, const N: usize>(
     example: &str,
@@ -137,7 +151,23 @@ fn frame<const W: usize, const H: usize, const N: usize>(
         DrawMode::Dashed
     };
     match example {
-        "suzanne" | "surfaces" => engine_frame(
+        "suzanne" | "surfaces" => fast_frame(
+            &mut scenes::FastEngine::new(),
+            &mut scenes::SuzanneFastBuffers::new().workspace(),
+            scene,
+            mode,
+            &mut *fb,
+            run,
+        ),
+        "panel" => fast_frame(
+            &mut scenes::PanelFastEngine::new(),
+            &mut scenes::PanelFastBuffers::new().workspace(),
+            scene,
+            mode,
+            &mut *fb,
+            run,
+        ),
+        "suzanne-scanline" => engine_frame(
             &mut scenes::Engine::new(),
             &mut scenes::SuzanneBuffers::new().workspace(),
             scene,
@@ -145,7 +175,7 @@ fn frame<const W: usize, const H: usize, const N: usize>(
             &mut *fb,
             run,
         ),
-        "panel" => engine_frame(
+        "panel-scanline" => engine_frame(
             &mut scenes::PanelEngine::new(),
             &mut scenes::PanelBuffers::new().workspace(),
             scene,
@@ -173,11 +203,26 @@ fn frame<const W: usize, const H: usize, const N: usize>(
     fb.as_bytes().to_vec()
 }
 
-/// One pbuffer frame as the firmware draws it: clear, then `scenes::render`.
+/// One fast-engine frame as the firmware draws it: clear, then `scenes::render_fast`.
+fn fast_frame<const W: usize, const H: usize, const N: usize, const F: usize, const L: usize>(
+    engine: &mut FastRenderer<U4, F, L>,
+    ws: &mut FastWorkspace<'_>,
+    (_, _, baked, view): FrameScene<'_, '_, '_>,
+    mode: DrawMode,
+    fb: &mut PackedFramebuffer<W, H, N>,
+    run: impl Fn(&mut dyn FnMut()),
+) {
+    run(&mut || {
+        fb.clear();
+        scenes::render_fast(engine, baked, view, mode, ws, fb).expect("renders");
+    });
+}
+
+/// One scan-line frame as the firmware draws it: clear, then `scenes::render`.
 fn engine_frame<const W: usize, const H: usize, const N: usize, const F: usize, const E: usize>(
     engine: &mut CodeFillRenderer<U4, 1, F, E, 16>,
     ws: &mut CodeWorkspace<'_>,
-    (mesh, edges, view): FrameScene<'_, '_, '_>,
+    (mesh, edges, _, view): FrameScene<'_, '_, '_>,
     mode: DrawMode,
     fb: &mut PackedFramebuffer<W, H, N>,
     run: impl Fn(&mut dyn FnMut()),
@@ -191,7 +236,7 @@ fn engine_frame<const W: usize, const H: usize, const N: usize, const F: usize, 
 /// One frame of the embedded-graphics painter baseline: clear, then paint.
 fn painter_frame<const W: usize, const H: usize, const N: usize, const V: usize, const F: usize>(
     p: &mut painter::PainterBuffers<V, F>,
-    (mesh, _, view): FrameScene<'_, '_, '_>,
+    (mesh, _, _, view): FrameScene<'_, '_, '_>,
     fb: &mut PackedFramebuffer<W, H, N>,
     run: impl Fn(&mut dyn FnMut()),
 ) {
@@ -211,7 +256,7 @@ fn plain_frame<
     const V: usize,
     const F: usize,
 >(
-    (mesh, edges, view): FrameScene<'_, '_, '_>,
+    (mesh, edges, _, view): FrameScene<'_, '_, '_>,
     run: impl Fn(&mut dyn FnMut()),
 ) -> Vec<u8> {
     let mut p = Box::new(plain::PlainBuffers::<P, N, V, F>::new());
