@@ -7,19 +7,30 @@ use core::convert::Infallible;
 
 use fixed::types::extra::U4;
 use pbuffer::mesh::{EdgeAdjacency, Mesh};
-use pbuffer::render::ProjectedVertex;
+use pbuffer::render::{BakedMesh, FastRenderer, FastVertex, FastWorkspace, ProjectedVertex};
 use pbuffer::{
     Camera, CodeFillRenderer, CodeWorkspace, Cull, DrawMode, Error, MonoPalette, Pattern,
     Projection, Settings, SpanSink, Stats,
 };
 
-/// The engine every pbuffer example renders with: the code-fill engine (no depth
+/// The scan-line engine of the `*-scanline` examples: the code-fill engine (no depth
 /// buffer), S = 4 sub-pixel bits, a 32-bit surface code (suzanne needs 9 bits),
 /// room for 128 faces and 384 edges active on one row (the suzanne frames need up
 /// to 258 edges) and 16 vertices per clipped face.
 pub type Engine = CodeFillRenderer<U4, 1, 128, 384, 16>;
-/// The panel's engine: the same, with room for the bracket's 16 faces and 64 edges.
+/// The panel's scan-line engine: the same, with room for the bracket's 16 faces and
+/// 64 edges.
 pub type PanelEngine = CodeFillRenderer<U4, 1, 16, 64, 16>;
+
+/// The default engine of the examples: the fast engine (a scan-line Z-buffer one row
+/// high), S = 4 sub-pixel bits, room for 256 facets and 128 feature lines active on
+/// one row (suzanne's 8 frames need up to 166 and 70).
+pub type FastEngine = FastRenderer<U4, 256, 128>;
+/// The panel's fast engine: room for every one of the bracket's 16 (planar) faces and
+/// 36 edges at once, so no view can run out.
+pub type PanelFastEngine = FastRenderer<U4, 16, { panel::EDGES }>;
+/// Corners of clipped faces the fast examples have room for (their frames clip none).
+pub const FAST_POOL: usize = 64;
 
 /// A perspective camera looking at `target`, `up` = +Y.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -106,61 +117,8 @@ pub mod panel {
         }
     }
 
-    /// An L profile (x, y) extruded over z in [-1, 1] (vertices 0-11), and a hexagonal
-    /// boss of radius 0.45 on its foot, y in [0.6, 1.4] (vertices 12-23).
-    pub const VERTICES: [[f32; 3]; 24] = [
-        [0.0, 0.0, -1.0],
-        [3.0, 0.0, -1.0],
-        [3.0, 0.6, -1.0],
-        [0.6, 0.6, -1.0],
-        [0.6, 2.0, -1.0],
-        [0.0, 2.0, -1.0],
-        [0.0, 0.0, 1.0],
-        [3.0, 0.0, 1.0],
-        [3.0, 0.6, 1.0],
-        [0.6, 0.6, 1.0],
-        [0.6, 2.0, 1.0],
-        [0.0, 2.0, 1.0],
-        // boss, bottom ring (angle 0, 60, ..., 300 degrees in the x-z plane)
-        [2.25, 0.6, 0.0],
-        [2.025, 0.6, 0.3897114],
-        [1.575, 0.6, 0.3897114],
-        [1.35, 0.6, 0.0],
-        [1.575, 0.6, -0.3897114],
-        [2.025, 0.6, -0.3897114],
-        // top ring
-        [2.25, 1.4, 0.0],
-        [2.025, 1.4, 0.3897114],
-        [1.575, 1.4, 0.3897114],
-        [1.35, 1.4, 0.0],
-        [1.575, 1.4, -0.3897114],
-        [2.025, 1.4, -0.3897114],
-    ];
-    /// Faces, counter-clockwise from outside: L front, L back, 6 L sides, boss
-    /// top, bottom and 6 sides.
-    pub const INDICES: [u32; 72] = [
-        6, 7, 8, 9, 10, 11, // front (z = 1), concave
-        5, 4, 3, 2, 1, 0, // back
-        0, 1, 7, 6, //
-        1, 2, 8, 7, //
-        2, 3, 9, 8, //
-        3, 4, 10, 9, //
-        4, 5, 11, 10, //
-        5, 0, 6, 11, //
-        23, 22, 21, 20, 19, 18, // boss top
-        12, 13, 14, 15, 16, 17, // boss bottom
-        13, 12, 18, 19, //
-        14, 13, 19, 20, //
-        15, 14, 20, 21, //
-        16, 15, 21, 22, //
-        17, 16, 22, 23, //
-        12, 17, 23, 18, //
-    ];
-    pub const OFFSETS: [u32; 17] = [
-        0, 6, 12, 16, 20, 24, 28, 32, 36, 42, 48, 52, 56, 60, 64, 68, 72,
-    ];
-    /// Unique edges: 18 of the L, 18 of the boss.
-    pub const EDGES: usize = 36;
+    // VERTICES, INDICES, OFFSETS and EDGES: shared with build.rs.
+    include!("panel_mesh.rs");
 }
 
 /// A zero vertex, for `static` buffers.
@@ -246,6 +204,138 @@ pub type PanelBuffers = Buffers<
     { 2 * words(panel::WIDTH) * panel::BAND },
 >;
 
+/// The lent working memory of the fast engine for one scene: `V` vertices, `F` faces
+/// (`FW` facing words), `E` baked edges, `H2` list heads (2 x height), `W` row
+/// entries (width), `MW` mask words (2 x ceil(width / 32)), `P` clipped corners. No
+/// probe ids (the examples draw without a probe). Zero-initialised, so a `static` of
+/// it is `.bss`.
+#[derive(Debug)]
+pub struct FastBuffers<
+    const V: usize,
+    const F: usize,
+    const FW: usize,
+    const E: usize,
+    const H2: usize,
+    const W: usize,
+    const MW: usize,
+    const P: usize,
+> {
+    pub vertices: [FastVertex; V],
+    pub facing: [u32; FW],
+    pub face_links: [u16; F],
+    pub line_links: [u16; E],
+    pub heads: [u16; H2],
+    pub row: [u32; W],
+    pub masks: [u32; MW],
+    pub pool: [FastVertex; P],
+    pub slopes: [u16; F],
+}
+
+impl<
+        const V: usize,
+        const F: usize,
+        const FW: usize,
+        const E: usize,
+        const H2: usize,
+        const W: usize,
+        const MW: usize,
+        const P: usize,
+    > FastBuffers<V, F, FW, E, H2, W, MW, P>
+{
+    /// All zero.
+    pub const fn new() -> Self {
+        Self {
+            vertices: [FastVertex::ZERO; V],
+            facing: [0; FW],
+            face_links: [0; F],
+            line_links: [0; E],
+            heads: [0; H2],
+            row: [0; W],
+            masks: [0; MW],
+            pool: [FastVertex::ZERO; P],
+            slopes: [0; F],
+        }
+    }
+
+    /// The workspace the fast engine borrows.
+    pub fn workspace(&mut self) -> FastWorkspace<'_> {
+        FastWorkspace {
+            vertices: &mut self.vertices,
+            facing: &mut self.facing,
+            face_links: &mut self.face_links,
+            line_links: &mut self.line_links,
+            heads: &mut self.heads,
+            row: &mut self.row,
+            masks: &mut self.masks,
+            pool: &mut self.pool,
+            ids: &mut [],
+            slopes: &mut self.slopes,
+        }
+    }
+}
+
+/// Suzanne's baked edges (`suzanne::SUZANNE_EDGES.len()`, checked by the host test).
+pub const SUZANNE_EDGES: usize = 1005;
+
+/// Fast-engine buffers for suzanne (507 vertices, 500 faces, its baked edges) at
+/// 400 x 240.
+pub type SuzanneFastBuffers = FastBuffers<
+    507,
+    500,
+    { words(500) },
+    SUZANNE_EDGES,
+    { 2 * suzanne::HEIGHT },
+    { suzanne::WIDTH },
+    { 2 * words(suzanne::WIDTH) },
+    FAST_POOL,
+>;
+/// Fast-engine buffers for the panel part at 128 x 64.
+pub type PanelFastBuffers = FastBuffers<
+    24,
+    16,
+    1,
+    { panel::EDGES },
+    { 2 * panel::HEIGHT },
+    { panel::WIDTH },
+    { 2 * words(panel::WIDTH) },
+    FAST_POOL,
+>;
+
+/// Draws one frame of `baked` seen from `view` into `sink` with the fast engine:
+/// `mode` with culling on for closed meshes and the paper's pattern.
+pub fn render_fast<
+    K: SpanSink<Color = embedded_graphics::pixelcolor::BinaryColor, Error = Infallible>,
+    const FACETS: usize,
+    const LINES: usize,
+>(
+    engine: &mut FastRenderer<U4, FACETS, LINES>,
+    baked: &BakedMesh<'_>,
+    view: &View,
+    mode: DrawMode,
+    ws: &mut FastWorkspace<'_>,
+    sink: &mut K,
+) -> Result<Stats, Error> {
+    let camera = view.camera()?;
+    engine.render(
+        baked,
+        &camera,
+        &settings(mode),
+        ws,
+        &MonoPalette::default(),
+        sink,
+        &mut (),
+    )
+}
+
+/// The examples' settings: `mode`, culling on for closed meshes, the paper's pattern.
+fn settings(mode: DrawMode) -> Settings {
+    Settings {
+        mode,
+        cull: Cull::Auto,
+        pattern: Pattern::PAPER,
+    }
+}
+
 /// Draws one frame of `mesh` seen from `view` into `sink` with pbuffer's engine:
 /// `mode` with culling on for closed meshes and the paper's pattern.
 pub fn render<
@@ -262,16 +352,11 @@ pub fn render<
     sink: &mut K,
 ) -> Result<Stats, Error> {
     let camera = view.camera()?;
-    let settings = Settings {
-        mode,
-        cull: Cull::Auto,
-        pattern: Pattern::PAPER,
-    };
     engine.render(
         mesh,
         edges,
         &camera,
-        &settings,
+        &settings(mode),
         ws,
         &MonoPalette::default(),
         sink,

@@ -1,6 +1,8 @@
 //! A 128 x 64 instrument-panel picture (an SSD1306-sized frame): an L-bracket with a
 //! hexagonal boss, hidden lines dashed, 4 frames of a turning camera, rendered by
-//! pbuffer's engine in 8-row bands into the packed 1-bpp framebuffer.
+//! pbuffer's scan-line code-fill engine (`scenes::PanelEngine`) in 8-row bands into the
+//! packed 1-bpp framebuffer: the `panel` example's frames before the fast engine, kept
+//! to compare.
 #![no_std]
 #![no_main]
 
@@ -13,7 +15,7 @@ use pbuffer::{packed_len, DrawMode, PackedFramebuffer};
 use pbuffer_examples::fw;
 use pbuffer_examples::scenes::{self, fnv1a64, panel as scene, PanelBuffers, PanelEngine};
 
-const NAME: &str = "panel";
+const NAME: &str = "panel-scanline";
 type Fb = PackedFramebuffer<
     { scene::WIDTH },
     { scene::HEIGHT },

@@ -1,5 +1,6 @@
 //! Suzanne at 400 x 240, filled surfaces (dithered by shading) plus dashed hidden lines,
-//! 8 frames, pbuffer's engine in 16-row bands (`DrawMode::SurfacesDashed`).
+//! 8 frames (`DrawMode::SurfacesDashed`), pbuffer's fast engine (`scenes::FastEngine`)
+//! from the constants build.rs baked.
 #![no_std]
 #![no_main]
 
@@ -7,9 +8,10 @@ use core::ptr::addr_of_mut;
 
 use cortex_m_rt::entry;
 use panic_semihosting as _;
-use pbuffer::mesh::{EdgeAdjacency, Mesh};
+use pbuffer::mesh::Mesh;
+use pbuffer::render::BakedMesh;
 use pbuffer::{packed_len, DrawMode, PackedFramebuffer};
-use pbuffer_examples::scenes::{self, fnv1a64, suzanne as scene, Engine, SuzanneBuffers};
+use pbuffer_examples::scenes::{self, fnv1a64, suzanne as scene, FastEngine, SuzanneFastBuffers};
 use pbuffer_examples::{fw, suzanne};
 
 const NAME: &str = "surfaces";
@@ -20,8 +22,8 @@ type Fb = PackedFramebuffer<
 >;
 
 static mut FB: Fb = Fb::new();
-static mut BUFFERS: SuzanneBuffers = SuzanneBuffers::new();
-static mut ENGINE: Engine = Engine::new();
+static mut BUFFERS: SuzanneFastBuffers = SuzanneFastBuffers::new();
+static mut ENGINE: FastEngine = FastEngine::new();
 
 #[entry]
 fn main() -> ! {
@@ -35,22 +37,20 @@ fn main() -> ! {
             &mut *addr_of_mut!(ENGINE),
         )
     };
-    // Which faces are planar was found on the host (build.rs) and stays in flash.
-    let mesh = Mesh::new(&suzanne::VERTICES, &suzanne::INDICES, &suzanne::OFFSETS)
+    // Which faces are planar, the face planes and the compact edge list were made on
+    // the host (build.rs) and stay in flash; `BakedMesh::new` checks them once.
+    let baked = Mesh::new(&suzanne::VERTICES, &suzanne::INDICES, &suzanne::OFFSETS)
         .and_then(|mesh| mesh.with_planar_faces(&suzanne::PLANAR))
-        .unwrap_or_else(|e| fw::fail(NAME, &e));
-    // The edge list was built on the host (build.rs) and stays in flash.
-    let edges = EdgeAdjacency::from_edges(&mesh, &suzanne::EDGE_LIST)
+        .and_then(|mesh| BakedMesh::new(mesh, &suzanne::SUZANNE_PLANES, &suzanne::SUZANNE_EDGES))
         .unwrap_or_else(|e| fw::fail(NAME, &e));
     let boot = fw::stack_peak();
     fw::run(NAME, scene::FRAMES, boot, &mut counter, |n, c| {
         let view = scene::view(n);
         let (r, instructions) = c.count(|| {
             fb.clear();
-            scenes::render(
+            scenes::render_fast(
                 engine,
-                &mesh,
-                &edges,
+                &baked,
                 &view,
                 DrawMode::SurfacesDashed,
                 &mut buffers.workspace(),

@@ -1,5 +1,7 @@
 //! Suzanne at 400 x 240 with dashed hidden lines, 8 frames of an orbiting camera, into
-//! the packed 1-bpp framebuffer, rendered by pbuffer's engine in 16-row bands.
+//! the packed 1-bpp framebuffer, rendered by pbuffer's scan-line code-fill engine
+//! (`scenes::Engine`) in 16-row bands: the `suzanne` example's frames before the fast
+//! engine, kept to compare.
 #![no_std]
 #![no_main]
 
@@ -12,7 +14,7 @@ use pbuffer::{packed_len, DrawMode, PackedFramebuffer};
 use pbuffer_examples::scenes::{self, fnv1a64, suzanne as scene, Engine, SuzanneBuffers};
 use pbuffer_examples::{fw, suzanne};
 
-const NAME: &str = "suzanne";
+const NAME: &str = "suzanne-scanline";
 type Fb = PackedFramebuffer<
     { scene::WIDTH },
     { scene::HEIGHT },
