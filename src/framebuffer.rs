@@ -188,6 +188,40 @@ impl<const W: usize, const H: usize, const N: usize> SpanSink for PackedFramebuf
         }
         Ok(())
     }
+
+    /// Four bytes a word: the word's bits reversed are the row's MSB-first bytes.
+    fn fill_mask(&mut self, y: u16, mask: &[u32], color: BinaryColor) -> Result<u32, Infallible> {
+        let y = usize::from(y);
+        if y >= H {
+            return Ok(0);
+        }
+        let row = self
+            .bytes
+            .get_mut(y * Self::STRIDE..(y + 1) * Self::STRIDE)
+            .unwrap_or_default();
+        let mut words = 0;
+        for (k, (chunk, &word)) in row.chunks_mut(4).zip(mask).enumerate() {
+            // Bits past the width are not pixels.
+            let left = W.saturating_sub(32 * k);
+            let word = if left < 32 {
+                word & ((1u32 << left) - 1)
+            } else {
+                word
+            };
+            if word == 0 {
+                continue;
+            }
+            words += 1;
+            for (b, m) in chunk.iter_mut().zip(word.reverse_bits().to_be_bytes()) {
+                if color.is_on() {
+                    *b |= m;
+                } else {
+                    *b &= !m;
+                }
+            }
+        }
+        Ok(words)
+    }
 }
 
 #[cfg(test)]

@@ -72,6 +72,48 @@ pub trait SpanSink {
     /// Takes one span of one colour.
     fn fill_span(&mut self, span: Span, color: Self::Color) -> Result<(), Self::Error>;
 
+    /// Takes the pixels of row `y` set in `mask` (bit `k` of word `w` is pixel
+    /// `32w + k`; bits at or past the viewport's width are ignored), all of one
+    /// colour. By default each run of set bits is one [`fill_span`](Self::fill_span);
+    /// a sink that keeps packed rows can take the words whole. Returns the spans
+    /// (or words) written.
+    fn fill_mask(&mut self, y: u16, mask: &[u32], color: Self::Color) -> Result<u32, Self::Error> {
+        let width = usize::from(self.viewport().width);
+        let mut spans = 0;
+        let mut run: Option<(usize, usize)> = None;
+        for (k, &word) in mask.iter().enumerate() {
+            let mut bits = word;
+            while bits != 0 {
+                let start = bits.trailing_zeros();
+                let ones = (!(bits >> start)).trailing_zeros();
+                let x0 = 32 * k + start as usize;
+                let x1 = (x0 + ones as usize).min(width);
+                if x0 >= width {
+                    break;
+                }
+                run = match run {
+                    Some((a, b)) if b == x0 => Some((a, x1)),
+                    Some((a, b)) => {
+                        self.fill_span(Span::new(y, a as u16, b as u16), color)?;
+                        spans += 1;
+                        Some((x0, x1))
+                    }
+                    None => Some((x0, x1)),
+                };
+                bits = if start + ones >= 32 {
+                    0
+                } else {
+                    bits & !(((1u32 << ones) - 1) << start)
+                };
+            }
+        }
+        if let Some((a, b)) = run {
+            self.fill_span(Span::new(y, a as u16, b as u16), color)?;
+            spans += 1;
+        }
+        Ok(spans)
+    }
+
     /// Called after the last span of a primitive; sinks that batch spans write them out.
     fn flush(&mut self) -> Result<(), Self::Error> {
         Ok(())

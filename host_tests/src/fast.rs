@@ -46,7 +46,14 @@ pub struct FastBuffers {
 
 impl FastBuffers {
     /// Sized for `mesh` at `w` x `h`, with `pool` clipped corners.
-    pub fn new(vertices: usize, faces: usize, edges: usize, w: usize, h: usize, pool: usize) -> Self {
+    pub fn new(
+        vertices: usize,
+        faces: usize,
+        edges: usize,
+        w: usize,
+        h: usize,
+        pool: usize,
+    ) -> Self {
         Self {
             vertices: vec![FastVertex::default(); vertices],
             facing: vec![0; faces.div_ceil(32)],

@@ -65,6 +65,37 @@ impl SpanSink for PackedFrame {
         }
     }
 
+    /// As `PackedFramebuffer` does it (counted: it is the firmware's work too).
+    fn fill_mask(&mut self, y: u16, mask: &[u32], color: BinaryColor) -> Result<u32, Self::Error> {
+        let stride = self.width.div_ceil(8);
+        let y = usize::from(y);
+        let Some(row) = self.bytes.get_mut(y * stride..(y + 1) * stride) else {
+            return Ok(0);
+        };
+        let mut words = 0;
+        for (k, (chunk, &word)) in row.chunks_mut(4).zip(mask).enumerate() {
+            let left = self.width.saturating_sub(32 * k);
+            let word = if left < 32 {
+                word & ((1u32 << left) - 1)
+            } else {
+                word
+            };
+            if word == 0 {
+                continue;
+            }
+            words += 1;
+            for (b, m) in chunk.iter_mut().zip(word.reverse_bits().to_be_bytes()) {
+                if color.is_on() {
+                    *b |= m;
+                } else {
+                    *b &= !m;
+                }
+            }
+        }
+        self.spans += u64::from(words);
+        Ok(words)
+    }
+
     fn fill_span(&mut self, span: Span, color: BinaryColor) -> Result<(), Self::Error> {
         self.spans += 1;
         let stride = self.width.div_ceil(8);

@@ -33,8 +33,10 @@ rendering
   --crease DEG         crease angle in [0, 180] (default 30)
   --cull on|off|auto   back-face culling (default auto: on for closed meshes)
   --mode M             wireframe | hidden | dashed | surfaces | surfaces+dashed (default dashed)
-  --engine E           codefill | codefill-crossings | scanline | zbuffer | painter | bsp |
-                       warnock | raycast | newell (default codefill)
+  --engine E           fast | codefill | codefill-crossings | scanline | zbuffer | painter |
+                       bsp | warnock | raycast | newell (default fast: 16-bit depth, lines
+                       tested at pixel centres; codefill when --scheme, --depth-bits or
+                       --subpixel above 6 asks for an exact engine)
   --scheme S           with --engine codefill, paper 003's surface codes: priority (scheme 3:
                        weight-1 codes in a BSP depth order, the default) | combination
                        (scheme 1) | path (scheme 2): codes and colour table built for this

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use super::look::Look;
-use crate::frame::{ProjectionSpec, RenderSpec};
+use crate::frame::{EngineSpec, ProjectionSpec, RenderSpec};
 use crate::schemes::SchemeSpec;
 
 /// Everything the command line says.
@@ -18,6 +18,11 @@ pub struct Options {
     pub near: Option<f64>,
     pub far: Option<f64>,
     pub spec: RenderSpec,
+    /// Whether `--engine` was given (else the fast engine, or the code-fill engine
+    /// for a flag only the exact engines have).
+    pub engine_given: bool,
+    /// Whether `--depth-bits` was given.
+    pub depth_bits_given: bool,
     /// `--scheme`: the surface codes of the code-fill engine.
     pub scheme: SchemeSpec,
     /// `--band` as given (the default is the height, known after `--size`).
@@ -47,7 +52,12 @@ impl Default for Options {
             projection: None,
             near: None,
             far: None,
-            spec: RenderSpec::default(),
+            spec: RenderSpec {
+                engine: EngineSpec::Fast,
+                ..RenderSpec::default()
+            },
+            engine_given: false,
+            depth_bits_given: false,
             scheme: SchemeSpec::default(),
             band: None,
             out: None,

@@ -178,6 +178,7 @@ where
                 }
             }
             "--engine" => {
+                o.engine_given = true;
                 o.spec.engine = EngineSpec::by_name(&v).ok_or_else(|| {
                     let names: Vec<&str> = EngineSpec::ALL.iter().map(|e| e.name()).collect();
                     format!("--engine: `{v}` is not one of {}", names.join(", "))
@@ -191,6 +192,7 @@ where
             }
             "--subpixel" => o.spec.subpixel = int_in(flag, &v, 0, 12)? as u32,
             "--depth-bits" => {
+                o.depth_bits_given = true;
                 o.spec.depth_bits = match v.as_str() {
                     "16" => 16,
                     "32" => 32,
@@ -235,6 +237,15 @@ where
             }
             _ => unreachable!("every valued flag is handled"),
         }
+    }
+    // The default engine is the fast one; a flag only an exact engine has picks the
+    // code-fill engine instead.
+    if !o.engine_given
+        && (o.scheme != SchemeSpec::Priority
+            || o.spec.subpixel > pbuffer::render::FAST_MAX_SUBPIXEL_BITS
+            || o.depth_bits_given)
+    {
+        o.spec.engine = EngineSpec::CodeFill;
     }
     // Checks across flags.
     if o.fit && o.eye.is_some() {

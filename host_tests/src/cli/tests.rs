@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use super::*;
-use crate::frame::{CullSpec, MeshData, ModeSpec, ProjectionSpec, RenderSpec};
+use crate::frame::{CullSpec, EngineSpec, MeshData, ModeSpec, ProjectionSpec, RenderSpec};
 use crate::schemes::SchemeSpec;
 
 fn p(args: &[&str]) -> Result<Options, String> {
@@ -20,7 +20,30 @@ fn cube() -> MeshData {
 #[test]
 fn defaults() {
     let o = p(&[]).unwrap();
-    assert_eq!(o.spec, RenderSpec::default());
+    let fast = RenderSpec {
+        engine: EngineSpec::Fast,
+        ..RenderSpec::default()
+    };
+    assert_eq!(o.spec, fast);
+    // A flag only the exact engines have picks the code-fill engine.
+    for flags in [
+        &["--depth-bits", "16"][..],
+        &["--subpixel", "8"],
+        &["--scheme", "path"],
+    ] {
+        assert_eq!(
+            p(flags).unwrap().spec.engine,
+            EngineSpec::CodeFill,
+            "{flags:?}"
+        );
+    }
+    assert_eq!(
+        p(&["--engine", "zbuffer", "--subpixel", "8"])
+            .unwrap()
+            .spec
+            .engine,
+        EngineSpec::ZBuffer
+    );
     assert!(o.fits() && o.scene.is_none() && !o.stats && !o.hash);
     assert_eq!(o.spec.band, 240);
 }

@@ -54,6 +54,7 @@ pub fn expected_failure(engine: EngineSpec, scene: &str) -> Option<&'static str>
         EngineSpec::Bsp => {
             (scene == "suzanne").then_some("suzanne's quads are not planar: the tree orders their fan triangles, and where such a face folds on screen the painter paints its fragments only where its polygon covers; along a fan diagonal the seams' snapped split points leave a pixel or two where that and the fragments' parity (what the code fill counts) disagree")
         }
+        EngineSpec::Fast => (scene == "suzanne").then_some("approximate (16-bit depth, a tie of a sixteenth of a pixel's depth change): at 128x64 one pixel 0.09 px from an edge shows the face that meets the visible one there, which lies behind it (the engines_table test bounds it at one pixel)"),
         _ => None,
     }
 }

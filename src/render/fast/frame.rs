@@ -125,7 +125,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                     }
                 }
             }
-            let (visible, hidden) = masks.split_at(words);
+            let (visible, hidden) = masks.split_at_mut(words);
             if R::ACTIVE {
                 probe_ids(depth, row, ids);
                 probe.row(y as u16, ids.get(..width).unwrap_or(&[]), visible, hidden);
@@ -267,8 +267,16 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                 continue;
             }
             lists.feature_edges += 1;
-            let a = ws.vertices.get(usize::from(edge.a)).copied().unwrap_or_default();
-            let b = ws.vertices.get(usize::from(edge.b)).copied().unwrap_or_default();
+            let a = ws
+                .vertices
+                .get(usize::from(edge.a))
+                .copied()
+                .unwrap_or_default();
+            let b = ws
+                .vertices
+                .get(usize::from(edge.b))
+                .copied()
+                .unwrap_or_default();
             let first = if a.inside() && b.inside() {
                 // Pixels lie in the rows and columns of the ends' pixels.
                 let (lo, hi) = (a.y.min(b.y) >> s, a.y.max(b.y) >> s);
@@ -431,8 +439,14 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         let Some(edge) = baked.edges().get(usize::from(e)) else {
             return Ok(());
         };
-        let a = vertices.get(usize::from(edge.a)).copied().unwrap_or_default();
-        let b = vertices.get(usize::from(edge.b)).copied().unwrap_or_default();
+        let a = vertices
+            .get(usize::from(edge.a))
+            .copied()
+            .unwrap_or_default();
+        let b = vertices
+            .get(usize::from(edge.b))
+            .copied()
+            .unwrap_or_default();
         let (ea, eb) = (a, b);
         let ends = if a.inside() && b.inside() {
             Some((a, b))
@@ -514,8 +528,14 @@ fn folds(pts: &[FastVertex]) -> bool {
     let (mut pos, mut neg) = (false, false);
     for w in pts.get(1..).unwrap_or(&[]).windows(2) {
         if let [p, q] = *w {
-            let (ax, ay) = (i32::from(p.x) - i32::from(p0.x), i32::from(p.y) - i32::from(p0.y));
-            let (bx, by) = (i32::from(q.x) - i32::from(p0.x), i32::from(q.y) - i32::from(p0.y));
+            let (ax, ay) = (
+                i32::from(p.x) - i32::from(p0.x),
+                i32::from(p.y) - i32::from(p0.y),
+            );
+            let (bx, by) = (
+                i32::from(q.x) - i32::from(p0.x),
+                i32::from(q.y) - i32::from(p0.y),
+            );
             // 16-bit coordinates: the products fit i64 exactly.
             let cross = i64::from(ax) * i64::from(by) - i64::from(bx) * i64::from(ay);
             pos |= cross > 0;

@@ -139,11 +139,18 @@ impl ActiveLine {
                             && {
                                 let slope = slopes.get(usize::from(0xFFFF - id)).copied();
                                 let slope = u32::from(slope.unwrap_or(0));
-                                depth > self.d.saturating_add(self.bias.saturating_add(SLOPE_MARGIN * slope << 14))
+                                depth
+                                    > self.d.saturating_add(
+                                        self.bias.saturating_add(SLOPE_MARGIN * slope << 14),
+                                    )
                             }
                             && {
                                 let c = (2 * k + 1) << s;
-                                let e = if self.x_major { (c, self.v.q) } else { (self.v.q, c) };
+                                let e = if self.x_major {
+                                    (c, self.v.q)
+                                } else {
+                                    (self.v.q, c)
+                                };
                                 !beside(0xFFFF - id, &self.ends, e)
                             }
                     };

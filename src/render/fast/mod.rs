@@ -214,3 +214,5 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
 }
 
 mod frame;
+#[cfg(test)]
+mod tests;

@@ -50,7 +50,11 @@ impl Shades<'_> {
         if self.last.0 == face {
             return self.last.1;
         }
-        let plane = self.planes.get(usize::from(face)).copied().unwrap_or_default();
+        let plane = self
+            .planes
+            .get(usize::from(face))
+            .copied()
+            .unwrap_or_default();
         let n = plane.normal;
         let len = sqrt(dot(n, n));
         let shade = if len > 0.0 {
@@ -65,13 +69,14 @@ impl Shades<'_> {
 }
 
 /// Sends row `y` to `sink`: `row` holds the nearest face entries, `visible` and
-/// `hidden` the line masks. Returns the spans sent.
+/// `hidden` the line masks (`visible` becomes the drawn line pixels). Returns the
+/// spans sent.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn emit_row<K: SpanSink, P: Palette<Color = K::Color>>(
     y: u16,
     settings: &Settings,
     row: &[u32],
-    visible: &[u32],
+    visible: &mut [u32],
     hidden: &[u32],
     palette: &P,
     shades: &mut Shades<'_>,
@@ -83,21 +88,17 @@ pub(super) fn emit_row<K: SpanSink, P: Palette<Color = K::Color>>(
         run: None,
         spans: 0,
     };
-    let dashed = matches!(
-        settings.mode,
-        DrawMode::Dashed | DrawMode::SurfacesDashed
-    );
+    let dashed = matches!(settings.mode, DrawMode::Dashed | DrawMode::SurfacesDashed);
     let lines = settings.mode != DrawMode::Surfaces;
     // A pattern whose width divides 32 has one word for the whole row.
     let (w0, w1) = (
         settings.pattern.word(0, u32::from(y)),
         settings.pattern.word(32, u32::from(y)),
     );
-    let line_word = |k: usize| -> u32 {
+    let line_word = |k: usize, v: u32| -> u32 {
         if !lines {
             return 0;
         }
-        let v = visible.get(k).copied().unwrap_or(0);
         if dashed {
             let h = hidden.get(k).copied().unwrap_or(0);
             let pattern = if w0 == w1 {
@@ -111,12 +112,9 @@ pub(super) fn emit_row<K: SpanSink, P: Palette<Color = K::Color>>(
         }
     };
     let line = palette.line();
-    if matches!(
-        settings.mode,
-        DrawMode::Surfaces | DrawMode::SurfacesDashed
-    ) {
+    if matches!(settings.mode, DrawMode::Surfaces | DrawMode::SurfacesDashed) {
         for (k, chunk) in row.chunks(32).enumerate() {
-            let word = line_word(k);
+            let word = line_word(k, visible.get(k).copied().unwrap_or(0));
             for (i, &cell) in chunk.iter().enumerate() {
                 let x = (32 * k + i) as u16;
                 let id = 0xFFFF - (cell & 0xFFFF) as u16;
@@ -131,25 +129,12 @@ pub(super) fn emit_row<K: SpanSink, P: Palette<Color = K::Color>>(
             }
         }
     } else {
-        for k in 0..width.div_ceil(32) {
-            let mut bits = line_word(k);
-            // Each run of set bits is one span (merged across words).
-            while bits != 0 {
-                let start = bits.trailing_zeros();
-                let ones = (!(bits >> start)).trailing_zeros();
-                let x0 = 32 * k + start as usize;
-                let x1 = (x0 + ones as usize).min(width);
-                if x0 >= width {
-                    break;
-                }
-                runs.put(x0 as u16, x1 as u16, Some(line), sink)?;
-                bits = if start + ones >= 32 {
-                    0
-                } else {
-                    bits & !(((1u32 << ones) - 1) << start)
-                };
-            }
+        // Lines only: the row's line words go out whole.
+        let n = width.div_ceil(32);
+        for (k, w) in visible.iter_mut().enumerate().take(n) {
+            *w = line_word(k, *w);
         }
+        runs.spans += sink.fill_mask(y, visible.get(..n).unwrap_or(&[]), line)?;
     }
     runs.put(width as u16, width as u16, None, sink)?;
     Ok(runs.spans)

@@ -142,7 +142,11 @@ impl ScreenMap {
     /// Eye-space point of world position `p`.
     pub fn eye_space(&self, p: [f32; 3]) -> EyePoint {
         let d = sub(p, self.eye);
-        [dot(self.rows[0], d), dot(self.rows[1], d), dot(self.rows[2], d)]
+        [
+            dot(self.rows[0], d),
+            dot(self.rows[1], d),
+            dot(self.rows[2], d),
+        ]
     }
 
     /// The screen point of an eye-space point with `z > 0`.

@@ -1,0 +1,222 @@
+//! The fast engine's contract: baked data checked, errors with their sizes, and a
+//! small frame drawn exactly once per pixel.
+
+extern crate std;
+use std::vec;
+use std::vec::Vec;
+
+use embedded_graphics::mock_display::MockDisplay;
+use embedded_graphics::pixelcolor::BinaryColor;
+use fixed::types::extra::{U4, U7};
+
+use super::*;
+use crate::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
+use crate::render::{DrawMode, SolidPalette};
+use crate::{FillSolid, Pattern, Projection};
+
+/// A unit square in the z = 0 plane as two triangles sharing the diagonal 0-2.
+const SQUARE: [[f32; 3]; 4] = [[-1., -1., 0.], [1., -1., 0.], [1., 1., 0.], [-1., 1., 0.]];
+const TRIS: [u32; 6] = [0, 1, 2, 0, 2, 3];
+const OFFSETS: [u32; 3] = [0, 3, 6];
+
+struct Baked {
+    planes: Vec<FacePlane>,
+    edges: Vec<CompactEdge>,
+}
+
+fn bake(mesh: &Mesh<'_>) -> Baked {
+    let mut weld = vec![0u32; mesh.vertices().len()];
+    let mut scratch = vec![HalfEdgeRecord::EMPTY; mesh.indices().len()];
+    let mut store = vec![MeshEdge::EMPTY; mesh.indices().len()];
+    let adjacency = EdgeAdjacency::build(mesh, 30.0, &mut weld, &mut scratch, &mut store).unwrap();
+    let mut planes = vec![FacePlane::default(); mesh.face_count()];
+    let mut edges = vec![CompactEdge::default(); adjacency.edges().len()];
+    BakedMesh::bake(mesh, &adjacency, &mut planes, &mut edges).unwrap();
+    Baked { planes, edges }
+}
+
+struct Buffers {
+    vertices: Vec<FastVertex>,
+    facing: Vec<u32>,
+    face_links: Vec<u16>,
+    line_links: Vec<u16>,
+    heads: Vec<u16>,
+    row: Vec<u32>,
+    masks: Vec<u32>,
+    slopes: Vec<u16>,
+}
+
+impl Buffers {
+    fn new(vertices: usize, faces: usize, edges: usize, w: usize, h: usize) -> Self {
+        Self {
+            vertices: vec![FastVertex::ZERO; vertices],
+            facing: vec![0; faces.div_ceil(32)],
+            face_links: vec![0; faces],
+            line_links: vec![0; edges],
+            heads: vec![0; 2 * h],
+            row: vec![0; w],
+            masks: vec![0; 2 * w.div_ceil(32)],
+            slopes: vec![0; faces],
+        }
+    }
+
+    fn workspace(&mut self) -> FastWorkspace<'_> {
+        FastWorkspace {
+            vertices: &mut self.vertices,
+            facing: &mut self.facing,
+            face_links: &mut self.face_links,
+            line_links: &mut self.line_links,
+            heads: &mut self.heads,
+            row: &mut self.row,
+            masks: &mut self.masks,
+            pool: &mut [],
+            ids: &mut [],
+            slopes: &mut self.slopes,
+        }
+    }
+}
+
+fn camera() -> Camera {
+    Camera::new(
+        [0., 0., 4.],
+        [0., 0., 0.],
+        [0., 1., 0.],
+        Projection::Orthographic { half_height: 1.5 },
+        0.1,
+        10.0,
+    )
+    .unwrap()
+}
+
+fn settings(mode: DrawMode) -> Settings {
+    Settings {
+        mode,
+        cull: Cull::Off,
+        pattern: Pattern::PAPER,
+    }
+}
+
+#[test]
+fn two_triangles_fill_their_square_once_with_no_gap_on_the_diagonal() {
+    let mesh = Mesh::new(&SQUARE, &TRIS, &OFFSETS).unwrap();
+    let b = bake(&mesh);
+    let baked = BakedMesh::new(mesh, &b.planes, &b.edges).unwrap();
+    let mut buffers = Buffers::new(4, 2, b.edges.len(), 64, 64);
+    // MockDisplay panics on a pixel drawn twice: each pixel is one span's.
+    let mut display = MockDisplay::<BinaryColor>::new();
+    let palette = SolidPalette {
+        line: BinaryColor::On,
+        face: Some(BinaryColor::On),
+    };
+    let camera = Camera::new(
+        [0., 0., 4.],
+        [0., 0., 0.],
+        [0., 1., 0.],
+        Projection::Orthographic { half_height: 2.0 },
+        0.1,
+        10.0,
+    )
+    .unwrap();
+    let stats = FastRenderer::<U4, 8, 8>::new()
+        .render(
+            &baked,
+            &camera,
+            &settings(DrawMode::Surfaces),
+            &mut buffers.workspace(),
+            &palette,
+            &mut FillSolid::new(&mut display).unwrap(),
+            &mut (),
+        )
+        .unwrap();
+    assert_eq!(stats.faces_drawn, 2);
+    // 16 px a unit: the square covers exactly the centres in [16, 48) x [16, 48).
+    for y in 0..64 {
+        for x in 0..64 {
+            let inside = (16..48).contains(&x) && (16..48).contains(&y);
+            let on = display.get_pixel(embedded_graphics::prelude::Point::new(x, y));
+            assert_eq!(on.is_some(), inside, "pixel ({x}, {y})");
+        }
+    }
+}
+
+#[test]
+fn baked_planes_that_are_not_the_faces_own_are_refused() {
+    let mesh = Mesh::new(&SQUARE, &TRIS, &OFFSETS).unwrap();
+    let mut b = bake(&mesh);
+    assert!(BakedMesh::new(mesh, &b.planes, &b.edges).is_ok());
+    b.planes[1].normal[2] += 1.0;
+    assert_eq!(
+        BakedMesh::new(mesh, &b.planes, &b.edges).unwrap_err(),
+        Error::BadFacePlanes { face: 1 }
+    );
+    assert_eq!(
+        BakedMesh::new(mesh, &b.planes[..1], &b.edges).unwrap_err(),
+        Error::BadFacePlanes { face: 1 }
+    );
+    b.planes[1].normal[2] -= 1.0;
+    b.edges[0].faces = [0, 7];
+    assert!(matches!(
+        BakedMesh::new(mesh, &b.planes, &b.edges).unwrap_err(),
+        Error::BadEdgeList { edge: 0, .. }
+    ));
+}
+
+#[test]
+fn too_little_lent_storage_or_room_is_an_error_with_the_size_needed() {
+    let mesh = Mesh::new(&SQUARE, &TRIS, &OFFSETS).unwrap();
+    let b = bake(&mesh);
+    let baked = BakedMesh::new(mesh, &b.planes, &b.edges).unwrap();
+    let mut fb = crate::PackedFramebuffer::<16, 16, { crate::packed_len(16, 16) }>::new();
+    let palette = SolidPalette {
+        line: BinaryColor::On,
+        face: Some(BinaryColor::On),
+    };
+    let s = settings(DrawMode::SurfacesDashed);
+    // Three vertex slots for four vertices.
+    let mut short = Buffers::new(3, 2, b.edges.len(), 16, 16);
+    let r = FastRenderer::<U4, 8, 8>::new().render(
+        &baked,
+        &camera(),
+        &s,
+        &mut short.workspace(),
+        &palette,
+        &mut fb,
+        &mut (),
+    );
+    assert_eq!(
+        r.unwrap_err(),
+        Error::CapacityExceeded {
+            needed: 4,
+            capacity: 3
+        }
+    );
+    // Room for one active facet where the square's two are active together.
+    let mut ok = Buffers::new(4, 2, b.edges.len(), 16, 16);
+    let r = FastRenderer::<U4, 1, 8>::new().render(
+        &baked,
+        &camera(),
+        &s,
+        &mut ok.workspace(),
+        &palette,
+        &mut fb,
+        &mut (),
+    );
+    assert_eq!(
+        r.unwrap_err(),
+        Error::CapacityExceeded {
+            needed: 2,
+            capacity: 1
+        }
+    );
+    // Seven sub-pixel bits do not fit the 16-bit screen coordinates.
+    let r = FastRenderer::<U7, 8, 8>::new().render(
+        &baked,
+        &camera(),
+        &s,
+        &mut ok.workspace(),
+        &palette,
+        &mut fb,
+        &mut (),
+    );
+    assert_eq!(r.unwrap_err(), Error::SubpixelTooFine { bits: 7, max: 6 });
+}
