@@ -110,6 +110,7 @@ impl ActiveLine {
     /// Draws the line's pixels in row `y` into the visible and hidden masks
     /// (`row` is the finished row of face entries); returns false once the line
     /// has no pixel left.
+    #[allow(clippy::too_many_arguments)]
     pub fn row(
         &mut self,
         y: i32,
@@ -141,7 +142,7 @@ impl ActiveLine {
                                 let slope = u32::from(slope.unwrap_or(0));
                                 depth
                                     > self.d.saturating_add(
-                                        self.bias.saturating_add(SLOPE_MARGIN * slope << 14),
+                                        self.bias.saturating_add((SLOPE_MARGIN * slope) << 14),
                                     )
                             }
                             && {
