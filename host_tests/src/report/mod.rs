@@ -28,6 +28,7 @@ pub const ENGINES: &[(EngineSpec, &str, bool)] = &[
     (EngineSpec::CodeFillCrossings, "codefill-crossings", false),
     (EngineSpec::Scanline, "scanline", false),
     (EngineSpec::ZBuffer, "zbuffer", true),
+    (EngineSpec::Fast, "fast", false),
 ];
 
 /// Depth bits the Z-buffer engine offers (`Depth` is implemented for `u16` and `u32`

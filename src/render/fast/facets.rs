@@ -17,7 +17,7 @@ use crate::Error;
 
 /// Most corners of a face the fast engine draws without clipping; more is
 /// `CapacityExceeded` (for the even-odd path's crossings).
-pub const MAX_CORNERS: usize = 128;
+pub const MAX_CORNERS: usize = 64;
 
 /// Depths closer than a facet's tie are a tie, which the lower face index wins:
 /// coplanar faces get planes through different snapped corners, each up to
