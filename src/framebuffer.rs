@@ -169,6 +169,34 @@ impl<const W: usize, const H: usize, const N: usize> DrawTarget for PackedFrameb
     }
 }
 
+/// Sets (`on`) or clears the pixels of one packed row (`row`: MSB-first bytes, the
+/// [`PackedFramebuffer`] layout, `width` pixels) where `mask` has a bit (bit `k` of
+/// word `w` is pixel `32w + k`; bits at or past `width` are ignored): four bytes a
+/// word, the word's bits reversed. Returns the words that had a pixel.
+pub fn write_mask(row: &mut [u8], width: usize, mask: &[u32], on: bool) -> u32 {
+    let mut words = 0;
+    for (k, (chunk, &word)) in row.chunks_mut(4).zip(mask).enumerate() {
+        let left = width.saturating_sub(32 * k);
+        let word = if left < 32 {
+            word & ((1u32 << left) - 1)
+        } else {
+            word
+        };
+        if word == 0 {
+            continue;
+        }
+        words += 1;
+        for (b, m) in chunk.iter_mut().zip(word.reverse_bits().to_be_bytes()) {
+            if on {
+                *b |= m;
+            } else {
+                *b &= !m;
+            }
+        }
+    }
+    words
+}
+
 impl<const W: usize, const H: usize, const N: usize> SpanSink for PackedFramebuffer<W, H, N> {
     type Color = BinaryColor;
     type Error = Infallible;
@@ -199,28 +227,7 @@ impl<const W: usize, const H: usize, const N: usize> SpanSink for PackedFramebuf
             .bytes
             .get_mut(y * Self::STRIDE..(y + 1) * Self::STRIDE)
             .unwrap_or_default();
-        let mut words = 0;
-        for (k, (chunk, &word)) in row.chunks_mut(4).zip(mask).enumerate() {
-            // Bits past the width are not pixels.
-            let left = W.saturating_sub(32 * k);
-            let word = if left < 32 {
-                word & ((1u32 << left) - 1)
-            } else {
-                word
-            };
-            if word == 0 {
-                continue;
-            }
-            words += 1;
-            for (b, m) in chunk.iter_mut().zip(word.reverse_bits().to_be_bytes()) {
-                if color.is_on() {
-                    *b |= m;
-                } else {
-                    *b &= !m;
-                }
-            }
-        }
-        Ok(words)
+        Ok(write_mask(row, W, mask, color.is_on()))
     }
 }
 

@@ -54,7 +54,7 @@ pub use camera::{Camera, Projection};
 pub use codefill::XorFiller;
 pub use codes::SchemeViolation;
 pub use error::{CameraProblem, EdgeProblem, Error};
-pub use framebuffer::{packed_len, PackedFramebuffer};
+pub use framebuffer::{packed_len, write_mask, PackedFramebuffer};
 pub use geometry::{ScreenPoint, Viewport, GUARD_BAND_PX, MAX_SUBPIXEL_BITS, MAX_VIEWPORT};
 pub use mesh::{
     face_owns_edge, EdgeAdjacency, EdgeKind, HalfEdgeRecord, Mesh, MeshEdge, Viewpoint, MAX_FACES,

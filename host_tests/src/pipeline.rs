@@ -72,26 +72,7 @@ impl SpanSink for PackedFrame {
         let Some(row) = self.bytes.get_mut(y * stride..(y + 1) * stride) else {
             return Ok(0);
         };
-        let mut words = 0;
-        for (k, (chunk, &word)) in row.chunks_mut(4).zip(mask).enumerate() {
-            let left = self.width.saturating_sub(32 * k);
-            let word = if left < 32 {
-                word & ((1u32 << left) - 1)
-            } else {
-                word
-            };
-            if word == 0 {
-                continue;
-            }
-            words += 1;
-            for (b, m) in chunk.iter_mut().zip(word.reverse_bits().to_be_bytes()) {
-                if color.is_on() {
-                    *b |= m;
-                } else {
-                    *b &= !m;
-                }
-            }
-        }
+        let words = pbuffer::write_mask(row, self.width, mask, color.is_on());
         self.spans += u64::from(words);
         Ok(words)
     }

@@ -44,19 +44,9 @@ fn fast_engine_is_within_the_accuracy_limits_on_every_scene() {
             let frame = render_frame(&scene.mesh, &cam, &spec(EngineSpec::Fast, size))
                 .unwrap_or_else(|e| panic!("{name}: fast: {e}"));
             let e = measure(&frame, &rf);
-            let near = near_edge_mask(&rf, 1.0);
-            let away = rf
-                .ids
-                .iter()
-                .zip(&near)
-                .filter(|(&id, &n)| id != 0 && !n)
-                .count();
+            let away = covered_away(&rf);
             let far = e.far_diffs + e.wrong_faces + e.depth_order;
-            let far_pct = if away > 0 {
-                100.0 * far as f64 / away as f64
-            } else {
-                0.0
-            };
+            let far_pct = far_pct(&e, &rf);
             println!(
                 "| {name} | {}x{} | {away} | {far} | {far_pct:.3} | {} | {:.3} | {:.3} | {:.3} |",
                 size.0,
@@ -100,15 +90,20 @@ fn fast_engine_is_within_the_accuracy_limits_on_every_scene() {
     );
 }
 
-/// The share of `far` among the pixels the reference covers away from edges, in %.
-fn far_pct(e: &Errors, rf: &host_tests::reference3d::RefFrame) -> f64 {
+/// The pixels the reference covers more than 1 px from every projected edge.
+fn covered_away(rf: &host_tests::reference3d::RefFrame) -> usize {
     let near = near_edge_mask(rf, 1.0);
-    let away = rf
-        .ids
+    rf.ids
         .iter()
         .zip(&near)
         .filter(|(&id, &n)| id != 0 && !n)
-        .count();
+        .count()
+}
+
+/// Far differences, wrong faces and depth-order errors as a share of the pixels the
+/// reference covers away from edges, in %.
+fn far_pct(e: &Errors, rf: &host_tests::reference3d::RefFrame) -> f64 {
+    let away = covered_away(rf);
     let far = e.far_diffs + e.wrong_faces + e.depth_order;
     if away > 0 {
         100.0 * far as f64 / away as f64

@@ -12,9 +12,11 @@ struct Lists {
 }
 
 impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, FACETS, LINES> {
-    /// The frame loop.
+    /// Renders `baked` seen by `camera` into `sink`, whose viewport is the frame.
+    /// Colours come from `palette`; `probe` sees each finished row (for the `--ids`
+    /// and `--lines` outputs; `&mut ()` ignores them).
     #[allow(clippy::too_many_arguments)]
-    pub(super) fn render_rows<K: SpanSink, P: Palette<Color = K::Color>, R: FrameProbe>(
+    pub fn render<K: SpanSink, P: Palette<Color = K::Color>, R: FrameProbe>(
         &mut self,
         baked: &BakedMesh<'_>,
         camera: &Camera,
@@ -316,10 +318,6 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         let mesh = baked.mesh();
         let corners = mesh.face(usize::from(f));
         let n = corners.len();
-        let full = Error::CapacityExceeded {
-            needed: FACETS + 1,
-            capacity: FACETS,
-        };
         // Triangles and quads, the common case, are gathered on the stack.
         let mut pts = [FastVertex::ZERO; 4];
         let mut clipped = n > pts.len();
@@ -328,21 +326,8 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             clipped |= !p.inside();
         }
         if n <= pts.len() && !clipped {
-            let pts = pts.get(..n).unwrap_or(&[]);
-            if n == 4 && mesh.kept_planarity(usize::from(f)) == Some(false) && !folds(pts) {
-                let mut slope = 0;
-                for (k, tri) in [[0, 1, 2], [0, 2, 3]].into_iter().enumerate() {
-                    let tri = tri.map(|i| pts.get(i).copied().unwrap_or_default());
-                    if let Some(facet) = facet(&tri, f, Corners::Fan(k as u8 + 1), y, map.s) {
-                        slope = slope.max(facet.slope());
-                        self.facets.push(facet).map_err(|_| full)?;
-                    }
-                }
-                set_slope(slopes, f, slope);
-            } else if let Some(facet) = facet(pts, f, Corners::Face, y, map.s) {
-                set_slope(slopes, f, facet.slope());
-                self.facets.push(facet).map_err(|_| full)?;
-            }
+            let bent = n == 4 && mesh.kept_planarity(usize::from(f)) == Some(false);
+            self.push_facets(pts.get(..n).unwrap_or(&[]), bent, f, y, map.s, slopes)?;
             return Ok(pool_used);
         }
         self.activate_other(baked, map, vertices, pool, pool_used, slopes, f, y)
@@ -410,21 +395,42 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                 capacity: MAX_CORNERS,
             })?;
         }
-        if mesh.kept_planarity(usize::from(f)) == Some(false) && !folds(&poly) {
-            let mut slope = 0;
-            for k in 1..n - 1 {
-                let tri = [0, k, k + 1].map(|i| poly.get(i).copied().unwrap_or_default());
-                if let Some(facet) = facet(&tri, f, Corners::Fan(k as u8), y, map.s) {
+        let bent = mesh.kept_planarity(usize::from(f)) == Some(false);
+        self.push_facets(&poly, bent, f, y, map.s, slopes)?;
+        Ok(pool_used)
+    }
+
+    /// The facets of face `f` with (unclipped) corners `pts` at row `y`: its fan
+    /// triangles when it is `bent` and its fan does not fold on screen, else the
+    /// polygon; records the face's steepest slope.
+    fn push_facets(
+        &mut self,
+        pts: &[FastVertex],
+        bent: bool,
+        f: u16,
+        y: i32,
+        s: u32,
+        slopes: &mut [u16],
+    ) -> Result<(), Error> {
+        let full = Error::CapacityExceeded {
+            needed: FACETS + 1,
+            capacity: FACETS,
+        };
+        let mut slope = 0;
+        if bent && !folds(pts) {
+            for k in 1..pts.len().saturating_sub(1) {
+                let tri = [0, k, k + 1].map(|i| pts.get(i).copied().unwrap_or_default());
+                if let Some(facet) = facet(&tri, f, Corners::Fan(k as u8), y, s) {
                     slope = slope.max(facet.slope());
                     self.facets.push(facet).map_err(|_| full)?;
                 }
             }
-            set_slope(slopes, f, slope);
-        } else if let Some(facet) = facet(&poly, f, Corners::Face, y, map.s) {
-            set_slope(slopes, f, facet.slope());
+        } else if let Some(facet) = facet(pts, f, Corners::Face, y, s) {
+            slope = facet.slope();
             self.facets.push(facet).map_err(|_| full)?;
         }
-        Ok(pool_used)
+        set_slope(slopes, f, slope);
+        Ok(())
     }
 
     /// Makes the active line of edge `e` (clipped when an end is outside).

@@ -194,23 +194,6 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
     pub const fn bytes_for(facets: usize, lines: usize) -> usize {
         facets * size_of::<Facet>() + lines * size_of::<ActiveLine>()
     }
-
-    /// Renders `baked` seen by `camera` into `sink`, whose viewport is the frame.
-    /// Colours come from `palette`; `probe` sees each finished row (for the `--ids`
-    /// and `--lines` outputs; `&mut ()` ignores them).
-    #[allow(clippy::too_many_arguments)]
-    pub fn render<K: SpanSink, P: Palette<Color = K::Color>, R: FrameProbe>(
-        &mut self,
-        baked: &BakedMesh<'_>,
-        camera: &Camera,
-        settings: &Settings,
-        ws: &mut FastWorkspace<'_>,
-        palette: &P,
-        sink: &mut K,
-        probe: &mut R,
-    ) -> Result<Stats, Error<K::Error>> {
-        self.render_rows(baked, camera, settings, ws, palette, sink, probe)
-    }
 }
 
 mod frame;
