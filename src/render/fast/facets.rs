@@ -35,8 +35,8 @@ pub(super) enum Corners {
     Face,
     /// Fan triangle `(c0, ck, ck+1)` of the face.
     Fan(u8),
-    /// `len` clipped corners at `start` in the clip pool.
-    Pool { start: u16, len: u8 },
+    /// Clipped corners from `start` in the clip pool (the facet knows how many).
+    Pool { start: u16 },
 }
 
 /// One facet crossing the current row.

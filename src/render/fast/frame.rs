@@ -368,8 +368,9 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                 return Ok(pool_used);
             }
             let end = pool_used + poly.len();
-            let room = pool.len();
-            let Some(slots) = pool.get_mut(pool_used..end) else {
+            // Pool positions are 16-bit in a facet: a larger pool is used up to there.
+            let room = pool.len().min(usize::from(u16::MAX));
+            let Some(slots) = pool.get_mut(pool_used..end).filter(|_| end <= room) else {
                 return Err(Error::CapacityExceeded {
                     needed: end,
                     capacity: room,
@@ -378,7 +379,6 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             slots.copy_from_slice(&poly);
             let corners = Corners::Pool {
                 start: pool_used as u16,
-                len: poly.len() as u8,
             };
             pool_used = end;
             if let Some(facet) = facet(&poly, f, corners, y, map.s) {

@@ -75,8 +75,9 @@ const NONE: u16 = 0xFFFF;
 /// the mesh's vertices; `facing` >= faces / 32 words; `face_links` >= faces;
 /// `line_links` >= edges; `heads` >= 2 x height; `row` >= width; `masks` >= 2 x
 /// ceil(width / 32); `pool` holds the corners of the frame's clipped faces (0 when
-/// nothing is clipped); `slopes` >= faces; `ids` >= width when a [`FrameProbe`] looks at the rows, else
-/// it may be empty. [`FastWorkspace::bytes`] sums them.
+/// nothing is clipped; at most 65,535 are used); `slopes` >= faces; `ids` >= width
+/// when a [`FrameProbe`] looks at the rows, else it may be empty.
+/// [`FastWorkspace::bytes`] sums them.
 #[derive(Debug)]
 pub struct FastWorkspace<'s> {
     /// The per-frame vertex cache.
