@@ -294,6 +294,28 @@ pub fn torus(nu: u32, nv: u32, big_r: f64, small_r: f64) -> MeshData {
     m
 }
 
+/// An open cylinder around the Y axis (no caps): `n` quads (or, `split`, two
+/// triangles each) of radius `r` from y = 0 to y = `h`, their fronts outward.
+/// Open, so both sides are drawn.
+pub fn open_cylinder(n: u32, r: f64, h: f64, split: bool) -> MeshData {
+    let mut m = MeshData::default();
+    for i in 0..n {
+        let u = std::f64::consts::TAU * f64::from(i) / f64::from(n);
+        m.vertices.push([r * u.cos(), 0.0, -r * u.sin()]);
+        m.vertices.push([r * u.cos(), h, -r * u.sin()]);
+    }
+    for i in 0..n {
+        let j = (i + 1) % n;
+        if split {
+            m.faces.push(vec![2 * i, 2 * j, 2 * j + 1]);
+            m.faces.push(vec![2 * i, 2 * j + 1, 2 * i + 1]);
+        } else {
+            m.faces.push(vec![2 * i, 2 * j, 2 * j + 1, 2 * i + 1]);
+        }
+    }
+    m
+}
+
 /// A gear: a profile of `teeth` trapezoid teeth between radii `r_root` and `r_tip`,
 /// extruded along Z by `thickness`; the two caps are single concave n-gons.
 pub fn gear(teeth: u32, r_root: f64, r_tip: f64, thickness: f64) -> MeshData {

@@ -244,8 +244,15 @@ impl<'a> Mesh<'a> {
     /// The bit patterns of vertex `i`'s coordinates: equal exactly when the
     /// positions weld. `None` when there is no such vertex.
     pub(crate) fn position_bits(&self, i: u32) -> Option<[u32; 3]> {
-        self.vertices.get(i as usize).map(|p| p.map(f32::to_bits))
+        self.vertices.get(i as usize).map(weld_bits)
     }
+}
+
+/// The weld key of a position: its coordinates' bit patterns, with `-0.0` written
+/// as `0.0` (CONVENTIONS.md: they weld; a mirrored model's seam has both).
+pub(crate) fn weld_bits(p: &[f32; 3]) -> [u32; 3] {
+    // Adding +0.0 turns -0.0 into +0.0 and leaves every other value alone.
+    p.map(|c| (c + 0.0).to_bits())
 }
 
 /// Bit `i` of a bitset of words (bit `i % 32` of word `i / 32`): a face's or an

@@ -51,7 +51,7 @@ fn ordered(t: f64) -> u64 {
 impl Seams<'_> {
     /// Position bits: bit-identical positions are one vertex (welding).
     pub fn bits(&self, v: u32) -> [u32; 3] {
-        vertex(self.vertices, v).map(f32::to_bits)
+        crate::mesh::weld_bits(&vertex(self.vertices, v))
     }
 
     fn same(&self, a: u32, b: u32) -> bool {

@@ -5,6 +5,7 @@
 use heapless::Vec;
 
 use super::bend::{Bend, FaceView};
+use super::coverage::covers;
 use super::transform::{ProjectedVertex, ScreenVertex};
 use super::zband::{DepthPlane, IdBand};
 use super::{bit, face_polygon, FrameCtx, Settings};
@@ -464,9 +465,9 @@ fn hidden<const POLY: usize>(
             // Only a face that covers the point hides it now (none is extended):
             // the depth first, the cheaper question and most often no.
             return slot.bend.nearer(&face, px, (px.px, px.py), REACH_COVERING)
-                && polygon_contains(&slot.poly, px.px, px.py);
+                && covers(&slot.poly, px.px, px.py);
         }
-        if sure || polygon_contains(&slot.poly, px.px, px.py) {
+        if sure || covers(&slot.poly, px.px, px.py) {
             return slot.bend.nearer(&face, px, (px.px, px.py), REACH_COVERING);
         }
         // Only the face at the pixel centre is extended to the point; a neighbour
@@ -528,7 +529,7 @@ const REACH_EXTENDED: u64 = 32;
 
 /// True when face `f` has a vertex at the position of one of `edge`'s ends.
 fn touches(mesh: &Mesh<'_>, edge: &MeshEdge, f: usize) -> bool {
-    let key = |v: u32| mesh.vertices().get(v as usize).map(|p| p.map(f32::to_bits));
+    let key = |v: u32| mesh.position_bits(v);
     let ends = [key(edge.a), key(edge.b)];
     mesh.face(f).iter().any(|&v| ends.contains(&key(v)))
 }

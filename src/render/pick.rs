@@ -7,8 +7,9 @@ use fixed::types::extra::LeEqU32;
 use heapless::Vec;
 
 use super::bend::{Bend, FaceView};
+use super::coverage::covers;
 use super::coverage::covers_centre;
-use super::lines::{edge_on_screen, polygon_contains, walk_segment, REACH_COVERING};
+use super::lines::{edge_on_screen, walk_segment, REACH_COVERING};
 use super::transform::{ProjectedVertex, ScreenVertex};
 use super::zband::DepthPlane;
 use super::zfan::{fan_depth_at, takes_fan_depth};
@@ -141,7 +142,7 @@ pub fn pick<Frac: LeEqU32, const POLY: usize>(
                 if own || !bit(drawn, f) || !face_polygon(&ctx, vertices, f, &mut poly)? {
                     continue;
                 }
-                if !polygon_contains(&poly, px.px, px.py) {
+                if !covers(&poly, px.px, px.py) {
                     continue;
                 }
                 let Some(plane) = DepthPlane::new(&poly, s) else {

@@ -33,7 +33,7 @@ pub fn prepare_baseline(mesh: &MeshData) -> BaselineMesh {
         .enumerate()
         .map(|(i, p)| {
             *weld_of
-                .entry([p[0].to_bits(), p[1].to_bits(), p[2].to_bits()])
+                .entry(p.map(|c| (c + 0.0).to_bits()))
                 .or_insert(i as u32)
         })
         .collect();

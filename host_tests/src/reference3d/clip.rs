@@ -30,7 +30,7 @@ fn clip_plane(poly: &[V3], keep: impl Fn(&V3) -> bool, w: f64) -> Vec<V3> {
 
 /// The point of segment p q at depth -z = w, computed in a canonical order of p and q.
 fn intersect_w(p: V3, q: V3, w: f64) -> V3 {
-    let key = |v: &V3| v.map(f64::to_bits);
+    let key = |v: &V3| v.map(|c| (c + 0.0).to_bits());
     let (a, b) = if key(&p) <= key(&q) { (p, q) } else { (q, p) };
     let (wa, wb) = (-a[2], -b[2]);
     let t = (w - wa) / (wb - wa);

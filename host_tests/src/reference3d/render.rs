@@ -42,7 +42,8 @@ pub fn reference_frame(
         .iter()
         .map(|p| {
             let n = weld.len() as u32;
-            *weld.entry(p.map(f64::to_bits)).or_insert(n)
+            // -0.0 welds with 0.0 (CONVENTIONS.md): `+ 0.0` makes it 0.0.
+            *weld.entry(p.map(|c| (c + 0.0).to_bits())).or_insert(n)
         })
         .collect();
     let mut edge_index: HashMap<(u32, u32), usize> = HashMap::new();

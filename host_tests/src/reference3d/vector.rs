@@ -30,8 +30,12 @@ pub(super) fn norm(a: V3) -> f64 {
 pub fn newell_normal(pts: &[V3]) -> V3 {
     let n = pts.len();
     let mut r = [0.0; 3];
+    // Offsets from the first corner: a face in a plane of constant x, y or z then
+    // gets exactly zero in the other components (raw coordinates leave a rounding
+    // residue that can make an edge-on face of an axis view face the eye or not).
+    let o = pts.first().copied().unwrap_or([0.0; 3]);
     for i in 0..n {
-        let (a, b) = (pts[i], pts[(i + 1) % n]);
+        let (a, b) = (sub(pts[i], o), sub(pts[(i + 1) % n], o));
         r[0] += (a[1] - b[1]) * (a[2] + b[2]);
         r[1] += (a[2] - b[2]) * (a[0] + b[0]);
         r[2] += (a[0] - b[0]) * (a[1] + b[1]);
