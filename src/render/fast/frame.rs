@@ -109,14 +109,13 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                 }
                 let (visible, hidden) = masks.split_at_mut(words);
                 let cache: &[FastVertex] = vertices;
-                // The face nearest at the pixel centre hides the edge point only if
-                // it covers the point itself (the fill rule): the centre is up to
-                // half a pixel off, and a face whose edge passes between them (the
-                // grazing face beside a silhouette) would hide a visible line.
-                let beside = |face: u16, e: (i32, i32)| {
+                let beside = |face: u16, ends: &[(i16, i16); 2], e: (i32, i32)| {
                     let corners = mesh.face(usize::from(face));
                     let corner = |v: &u32| cache.get(*v as usize).copied().unwrap_or_default();
-                    corners.iter().all(|v| corner(v).inside())
+                    corners.iter().any(|v| {
+                        let p = corner(v);
+                        p.inside() && ends.contains(&(p.x, p.y))
+                    }) && corners.iter().all(|v| corner(v).inside())
                         && !covers(corners.iter().map(|v| corner(v).half()), e)
                 };
                 let mut i = 0;
@@ -454,6 +453,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             .get(usize::from(edge.b))
             .copied()
             .unwrap_or_default();
+        let (ea, eb) = (a, b);
         let ends = if a.inside() && b.inside() {
             Some((a, b))
         } else {
@@ -462,7 +462,8 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             clip_segment(map, p(edge.a), p(edge.b))
         };
         if let Some((a, b)) = ends {
-            if let Some(line) = ActiveLine::new(a, b, edge.faces, map.s) {
+            let ends = [(ea.x, ea.y), (eb.x, eb.y)];
+            if let Some(line) = ActiveLine::new(a, b, edge.faces, ends, map.s) {
                 self.lines.push(line).map_err(|_| Error::CapacityExceeded {
                     needed: LINES + 1,
                     capacity: LINES,
@@ -481,8 +482,7 @@ fn set_slope(slopes: &mut [u16], f: u16, slope: u16) {
 }
 
 /// Is point `e` (half-units) inside the polygon with corners `corners` (half-units)
-/// by the fill rule of CONVENTIONS.md: even-odd, a point on an edge inside when the
-/// point moved by (+e, +e^2) is (the top-left rule, as `render::coverage::covers`).
+/// by the even-odd rule, a point on an edge counting as inside?
 fn covers(mut corners: impl Iterator<Item = (i32, i32)> + Clone, e: (i32, i32)) -> bool {
     let Some(first) = corners.next() else {
         return false;
@@ -491,13 +491,22 @@ fn covers(mut corners: impl Iterator<Item = (i32, i32)> + Clone, e: (i32, i32)) 
     let mut inside = false;
     let mut a = first;
     for b in corners.chain(core::iter::once(first)) {
-        let ((x0, y0), (x1, y1)) = if a.1 <= b.1 { (a, b) } else { (b, a) };
-        a = b;
-        let (x0, y0, x1, y1) = (i64::from(x0), i64::from(y0), i64::from(x1), i64::from(y1));
-        // The crossing of the point's row counts when at or left of the point.
-        if y0 <= y && y < y1 && (y - y0) * (x1 - x0) <= (x - x0) * (y1 - y0) {
-            inside = !inside;
+        let (ay, by) = (i64::from(a.1), i64::from(b.1));
+        if (ay <= y) != (by <= y) {
+            let (lx, ly, hx, hy) = if ay < by {
+                (i64::from(a.0), ay, i64::from(b.0), by)
+            } else {
+                (i64::from(b.0), by, i64::from(a.0), ay)
+            };
+            let cross = (hx - lx) * (y - ly) - (hy - ly) * (x - lx);
+            if cross == 0 {
+                return true;
+            }
+            if cross > 0 {
+                inside = !inside;
+            }
         }
+        a = b;
     }
     inside
 }

@@ -3,11 +3,12 @@
 //! pixel is tested against the finished row: hidden when the face nearest at the
 //! pixel centre is nearer than the line's depth there by more than a margin (one
 //! pixel of the line's own depth slope, one depth unit, and a share of a pixel of
-//! the nearer face's steepest slope), is not one of the line's own faces, and
-//! covers the edge point itself by the fill rule (the pixel centre lies up to half
-//! a pixel from the edge point it stands for: a grazing face beside a silhouette,
-//! or a face around an end, covers the centre without covering the point). The
-//! exact test runs only for pixels that pass the cheap ones.
+//! the nearer face's steepest slope) and is not one of the line's own faces. The
+//! pixel centre lies up to half a pixel from the edge point it stands for, and a
+//! face beside a sliver own face, or around an end, covers the centre there without
+//! covering the edge point: so a face with a corner at one of the line's ends hides
+//! the pixel only when its polygon covers the edge point itself (tested exactly,
+//! only for these few).
 
 use super::step::Stepper;
 use super::view::FastVertex;
@@ -20,6 +21,8 @@ const SLOPE_MARGIN: u32 = 1;
 pub(super) struct ActiveLine {
     /// Row ids (`0xFFFF - face`) of its own faces.
     own: [u16; 2],
+    /// Its ends' snapped screen positions (`x`, `y`), as the vertex cache has them.
+    ends: [(i16, i16); 2],
     /// Current and last centre index along the major axis, and the step (+-1).
     k: i16,
     last: i16,
@@ -45,7 +48,15 @@ pub(super) enum LineTest {
 impl ActiveLine {
     /// The line between `a` and `b` (snapped screen points) with own faces
     /// `faces`; `None` when it has no pixel centre.
-    pub fn new(a: FastVertex, b: FastVertex, faces: [u16; 2], s: u32) -> Option<Self> {
+    /// `ends` are the edge's vertices' cache positions (which the faces around its
+    /// ends share).
+    pub fn new(
+        a: FastVertex,
+        b: FastVertex,
+        faces: [u16; 2],
+        ends: [(i16, i16); 2],
+        s: u32,
+    ) -> Option<Self> {
         let (h, p) = (1i32 << s, 2i32 << s);
         let ((ax, ay), (bx, by)) = (a.half(), b.half());
         let (dx, dy) = (bx - ax, by - ay);
@@ -84,6 +95,7 @@ impl ActiveLine {
         let dd = (per * p as f32) as i32 * dir;
         Some(Self {
             own: faces.map(|f| 0xFFFF - f),
+            ends,
             k: k as i16,
             last: last as i16,
             dir: dir as i8,
@@ -106,7 +118,7 @@ impl ActiveLine {
         test: LineTest,
         row: &[u32],
         slopes: &[u16],
-        beside: &impl Fn(u16, (i32, i32)) -> bool,
+        beside: &impl Fn(u16, &[(i16, i16); 2], (i32, i32)) -> bool,
         visible: &mut [u32],
         hidden: &mut [u32],
     ) -> bool {
@@ -140,7 +152,7 @@ impl ActiveLine {
                                 } else {
                                     (self.v.q, c)
                                 };
-                                !beside(0xFFFF - id, e)
+                                !beside(0xFFFF - id, &self.ends, e)
                             }
                     };
                     let mask = if hide { &mut *hidden } else { &mut *visible };

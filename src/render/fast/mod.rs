@@ -19,13 +19,10 @@
 //! - **Depth is 16 bits** in the row (of the frame's own nearness range), and a
 //!   face's depth is one plane in 16.16 fixed point set up in `f32`: faces closer
 //!   than a depth unit, or crossing, may swap over a few pixels.
-//! - **A line pixel asks only the face nearest at its pixel centre**, not every
-//!   face over the edge point: the edge's own two faces never hide it; another
-//!   face hides it only when nearer there by more than one pixel of the line's own
-//!   depth slope plus one depth unit (instead of "strictly nearer") and when it
-//!   covers the edge point itself by the fill rule. A face that covers the centre
-//!   but not the point (a grazing face beside a silhouette) leaves the pixel
-//!   visible, even where a face beside it would hide the point.
+//! - **A line pixel is tested at its pixel centre** against the face nearest
+//!   there, not at the edge point; the edge's own two faces never hide it, and
+//!   another face hides it only when nearer by more than one pixel of the line's
+//!   own depth slope plus one depth unit (instead of "strictly nearer").
 //!   A non-manifold edge's third and later faces are not its own here.
 //! - **A bent face** (not planar, [`Mesh::with_planar_faces`]) is drawn as its fan
 //!   triangles, each with its own plane (their union is the polygon's even-odd
