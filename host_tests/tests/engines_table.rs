@@ -20,6 +20,7 @@ fn every_engine_matches_the_reference_where_it_is_meant_to_work() {
             &Err("not measured".into())
         )
     );
+    assert!(skipped.is_empty(), "scenes skipped: {skipped:?}");
     assert!(
         rows.len() >= 3 * EngineSpec::ALL.len(),
         "too few rows: {}",

@@ -109,14 +109,17 @@ fn orbit(cam0: &CameraSpec, k: usize) -> CameraSpec {
     }
 }
 
-/// `../shared/models/suzanne.obj`, `None` (with a note) where it is not found.
-fn suzanne() -> Option<MeshData> {
+/// `../shared/models/suzanne.obj` (a missing model fails the test: it is part of
+/// the test set).
+fn suzanne() -> MeshData {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shared/models/suzanne.obj");
-    if !path.is_file() {
-        println!("note: {} not found; skipped", path.display());
-        return None;
-    }
-    Some(host_tests::obj::load_obj(&path).expect("suzanne loads"))
+    assert!(
+        path.is_file(),
+        "{} not found: {}",
+        path.display(),
+        "the shared models are part of the test set"
+    );
+    host_tests::obj::load_obj(&path).expect("suzanne loads")
 }
 
 /// The 32 views of `mesh` the suzanne tests take: 16 sides ([`orbit`]) at 400x240 and
@@ -130,9 +133,7 @@ fn views(mesh: &MeshData) -> impl Iterator<Item = (usize, usize, usize, CameraSp
 
 #[test]
 fn suzanne_from_sixteen_sides_matches_the_reference_in_a_bsp_order() {
-    let Some(mesh) = suzanne() else {
-        return;
-    };
+    let mesh = suzanne();
     // Code fill in a BSP order, the painted orders, then the engines that decide
     // each pixel by depth.
     let engines = [
@@ -496,9 +497,7 @@ fn random_twisted_quads_hide_lines_behind_their_fan_triangles() {
 
 #[test]
 fn suzanne_from_sixteen_sides_hides_lines_behind_fan_triangles() {
-    let Some(mesh) = suzanne() else {
-        return;
-    };
+    let mesh = suzanne();
     let engines = [
         EngineSpec::CodeFill,
         EngineSpec::Scanline,

@@ -50,6 +50,9 @@ pub use surfaces::{compare_surfaces, near_edge_mask};
 pub const MISCLASSIFIED_LIMIT: f64 = 0.005;
 /// Limit of (f), the missing fraction of visible and of hidden length.
 pub const MISSING_LIMIT: f64 = 0.01;
+/// Limit of the stray fraction: line pixels with no reference edge sample within
+/// 1 px (a line drawn where no feature edge is).
+pub const STRAY_LIMIT: f64 = 0.005;
 /// Hidden samples with a visible sample this close are left out of (f) ("1 wins").
 pub const HIDDEN_EXCEPT_RADIUS: f64 = 1.0;
 

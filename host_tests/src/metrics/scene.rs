@@ -2,7 +2,7 @@
 
 use std::fmt;
 
-use super::{MISCLASSIFIED_LIMIT, MISSING_LIMIT};
+use super::{MISCLASSIFIED_LIMIT, MISSING_LIMIT, STRAY_LIMIT};
 
 /// Surface counts of one scene.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -50,6 +50,10 @@ pub struct LineMetrics {
 impl LineMetrics {
     pub fn misclassified_fraction(&self) -> f64 {
         self.misclassified as f64 / (self.line_pixels.max(1)) as f64
+    }
+    /// Stray line pixels as a fraction of the library's line pixels.
+    pub fn stray_fraction(&self) -> f64 {
+        self.stray as f64 / (self.line_pixels.max(1)) as f64
     }
     pub fn visible_missing_fraction(&self) -> f64 {
         if self.visible_len > 0.0 {
@@ -100,6 +104,13 @@ impl SceneMetrics {
                     "misclassified line pixels {:.3}% (first at {:?})",
                     100.0 * l.misclassified_fraction(),
                     l.first_misclassified
+                ));
+            }
+            if l.stray_fraction() > STRAY_LIMIT {
+                why.push(format!(
+                    "stray line pixels {:.3}% ({} with no reference edge within 1 px)",
+                    100.0 * l.stray_fraction(),
+                    l.stray
                 ));
             }
             if l.visible_missing_fraction() > MISSING_LIMIT {

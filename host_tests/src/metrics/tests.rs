@@ -131,5 +131,13 @@ fn perturbed_frames_fail() {
             "{name} {lm:?}"
         );
         assert!(lm.stray > 0, "{name} {lm:?}");
+        // An extra line: the whole first row drawn visible, where the fitted
+        // camera leaves a margin and no feature edge runs.
+        let mut f = rf.to_frame();
+        f.lines.iter_mut().take(w).for_each(|v| *v = 1);
+        let lm = compare_lines(&f, &rf);
+        assert!(lm.stray_fraction() > STRAY_LIMIT, "{name} {lm:?}");
+        let m = compare(&name, &f, &rf, false, true);
+        assert!(m.check().is_err(), "{name}: an extra line passes");
     }
 }
