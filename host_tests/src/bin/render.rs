@@ -150,7 +150,16 @@ fn run() -> Result<(), Fail> {
     // The frame.
     let t = Instant::now();
     let frame = if o.scheme == SchemeSpec::Priority {
-        render_frame(&mesh, &camera, &o.spec).map_err(|e| bad(format!("{scene_name}: {e}")))?
+        render_frame(&mesh, &camera, &o.spec).map_err(|e| {
+            // A depth sort that cannot settle is a rendering failure of valid input
+            // (exit 1); the pipeline's other errors are about the input (exit 2).
+            let msg = format!("{scene_name}: {e}");
+            if e.contains("did not settle") {
+                Fail(msg, 1)
+            } else {
+                bad(msg)
+            }
+        })?
     } else {
         // A scheme the view cannot have (the named condition) is a rendering failure.
         let (frame, _) = render_scheme(&mesh, &camera, &o.spec, o.scheme).map_err(|e| match e {
