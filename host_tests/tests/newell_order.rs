@@ -193,7 +193,7 @@ fn models_match_reference() {
 /// of 3.4e38 among them) on which the depth sort ran a million shuffles and splits
 /// (2 s), or did not stop within 8 s: planes through such a corner are not finite,
 /// so Newell's tests cannot decide. The sort now stops at `8 n^2 + 256` steps for
-/// `n` drawn faces; every engine answers, with a picture or an error.
+/// a mesh of `n` faces; every engine answers, with a picture or an error.
 #[test]
 fn newell_sort_with_a_coordinate_near_f32_max_stops_within_its_scene_bound() {
     let scenes: [(&[[f64; 3]], &[&[u32]], [f64; 3]); 2] = [

@@ -32,11 +32,16 @@ pub(crate) fn covers(poly: &[ScreenVertex], px: i64, py: i64) -> bool {
         if !(y0 <= py && py < y1) {
             continue;
         }
-        // x0 + (py - y0) (x1 - x0) / (y1 - y0) <= px, with y1 - y0 > 0; products
-        // below 2^58 inside the guard band, in 128 bits for any input.
-        let lhs = i128::from(py - y0) * i128::from(x1 - x0);
-        let rhs = i128::from(px - x0) * i128::from(y1 - y0);
-        if lhs <= rhs {
+        // x0 + (py - y0) (x1 - x0) / (y1 - y0) <= px, with y1 - y0 > 0. Inside the
+        // guard band every difference fits 32 bits and a 64-bit product does (one
+        // multiply on a Cortex-M4); 128 bits for any other input.
+        let (a, b, c, d) = (py - y0, x1 - x0, px - x0, y1 - y0);
+        let narrow = |v: i64| i32::try_from(v).map(i64::from);
+        let left_of = match (narrow(a), narrow(b), narrow(c), narrow(d)) {
+            (Ok(a), Ok(b), Ok(c), Ok(d)) => a * b <= c * d,
+            _ => i128::from(a) * i128::from(b) <= i128::from(c) * i128::from(d),
+        };
+        if left_of {
             inside = !inside;
         }
     }

@@ -184,7 +184,7 @@ impl NewellSizes {
 pub struct NewellOptions {
     /// The most shuffles and splits (together) one sort may make; one more is
     /// [`Error::DepthSortUnsettled`]. Without cycles a sort makes fewer shuffles than
-    /// (drawn faces)^2 / 2; a sort of `n` drawn faces stops at `8 n^2 + 256` steps
+    /// (drawn faces)^2 / 2; a sort of a mesh of `n` faces stops at `8 n^2 + 256` steps
     /// whatever this allows, so that its time follows its scene.
     pub max_steps: usize,
 }
