@@ -256,6 +256,11 @@ fn warnock_draws_the_z_buffer_frame_on_random_scenes() {
     assert_same_frames(EngineSpec::ZBuffer, EngineSpec::Warnock, |_| {});
 }
 
+/// The Z-buffer's holes, wrong faces, depth-order errors and far id differences
+/// against the f64 reference over the 300 seeded scenes, as measured (2026-11-26):
+/// pixels at intersections and slivers the 32-bit plane compare decides otherwise.
+const Z_BUFFER_AGAINST_REFERENCE: [usize; 4] = [7, 0, 1, 178];
+
 #[test]
 fn code_fill_in_depth_order_is_as_faithful_as_the_z_buffer_on_random_scenes() {
     let mut failures = Vec::new();
@@ -324,6 +329,15 @@ fn code_fill_in_depth_order_is_as_faithful_as_the_z_buffer_on_random_scenes() {
         .iter()
         .enumerate()
     {
+        // The Z-buffer is the engine the others must equal: its own errors are
+        // bounded by what it makes today (seeded scenes), so a regression in it
+        // cannot pass through every engine that copies it.
+        if zc[k] > Z_BUFFER_AGAINST_REFERENCE[k] {
+            failures.push(format!(
+                "{name}: Z-buffer {} against the reference, over its bound {}",
+                zc[k], Z_BUFFER_AGAINST_REFERENCE[k]
+            ));
+        }
         if cc[k] > zc[k] + 2 {
             failures.push(format!(
                 "{name}: code fill {} against Z-buffer {}",
