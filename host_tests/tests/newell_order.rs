@@ -189,6 +189,9 @@ fn models_match_reference() {
     finish(&report, &failures);
 }
 
+/// Vertices, faces (0-based) and the eye of a fuzz scene.
+type FuzzScene = (&'static [[f64; 3]], &'static [&'static [u32]], [f64; 3]);
+
 /// Two of 4,000 random small scenes (3-12 vertices, up to 10 faces, a coordinate
 /// of 3.4e38 among them) on which the depth sort ran a million shuffles and splits
 /// (2 s), or did not stop within 8 s: planes through such a corner are not finite,
@@ -196,7 +199,7 @@ fn models_match_reference() {
 /// a mesh of `n` faces; every engine answers, with a picture or an error.
 #[test]
 fn newell_sort_with_a_coordinate_near_f32_max_stops_within_its_scene_bound() {
-    let scenes: [(&[[f64; 3]], &[&[u32]], [f64; 3]); 2] = [
+    let scenes: [FuzzScene; 2] = [
         (
             &[
                 [0.76, 0.97, 1.477],
