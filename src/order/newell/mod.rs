@@ -184,7 +184,8 @@ impl NewellSizes {
 pub struct NewellOptions {
     /// The most shuffles and splits (together) one sort may make; one more is
     /// [`Error::DepthSortUnsettled`]. Without cycles a sort makes fewer shuffles than
-    /// (drawn faces)^2 / 2; a sort of a mesh of `n` faces stops at `8 n^2 + 256` steps
+    /// (drawn faces)^2 / 2; a sort stops at `8 n^2 + 256` steps, `n` the mesh's faces
+    /// or the fragments it starts from (bent faces as fan triangles), whichever is more,
     /// whatever this allows, so that its time follows its scene.
     pub max_steps: usize,
 }

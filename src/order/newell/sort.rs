@@ -110,13 +110,14 @@ pub(super) fn run<'s>(
         max_steps: options.max_steps,
     };
     s.start(cull)?;
-    s.max_steps = s.max_steps.min(scene_steps(mesh.face_count()));
+    s.max_steps = s.max_steps.min(scene_steps(s.len.max(mesh.face_count())));
     s.settle()?;
     let (live, drawn) = s.compact()?;
     s.finish(live, drawn, rank)
 }
 
-/// The most shuffles and splits a sort of a mesh of `n` faces may make, whatever the
+/// The most shuffles and splits a sort of `n` faces or starting fragments (a bent
+/// face starts as its fan triangles), whichever is more, may make, whatever the
 /// options allow: without cycles it makes fewer than `n^2 / 2` shuffles, and the
 /// cycles of real scenes take a few splits each. A sort that needs more is one
 /// whose tests cannot decide (planes of coordinates near `f32::MAX` are not
