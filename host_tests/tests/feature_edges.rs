@@ -36,14 +36,6 @@ fn models() -> Vec<(String, MeshData)> {
 /// the side.
 fn views(mesh: &MeshData) -> Vec<(&'static str, CameraSpec)> {
     let (c, r) = bounds(mesh);
-    let above = CameraSpec {
-        eye: [c[0], c[1] + 4.0 * r, c[2]],
-        target: c,
-        up: [0.0, 0.0, -1.0],
-        projection: ProjectionSpec::Perspective { fov_deg: 40.0 },
-        near: 0.1 * r,
-        far: 10.0 * r,
-    };
     let side = CameraSpec {
         eye: [c[0] + 4.0 * r, c[1], c[2]],
         target: c,
@@ -56,9 +48,37 @@ fn views(mesh: &MeshData) -> Vec<(&'static str, CameraSpec)> {
     };
     vec![
         ("fitted", fit_camera(mesh, 200, 120)),
-        ("above", above),
+        (
+            "above",
+            above(mesh, ProjectionSpec::Perspective { fov_deg: 40.0 }),
+        ),
         ("side", side),
     ]
+}
+
+/// Straight down onto `mesh` from four bounding radii above its centre.
+fn above(mesh: &MeshData, projection: ProjectionSpec) -> CameraSpec {
+    let (c, r) = bounds(mesh);
+    CameraSpec {
+        eye: [c[0], c[1] + 4.0 * r, c[2]],
+        target: c,
+        up: [0.0, 0.0, -1.0],
+        projection,
+        near: 0.1 * r,
+        far: 10.0 * r,
+    }
+}
+
+/// A dashed 200x120 frame of `engine`.
+fn spec(engine: EngineSpec) -> RenderSpec {
+    RenderSpec {
+        width: 200,
+        height: 120,
+        band: 120,
+        mode: ModeSpec::Dashed,
+        engine,
+        ..RenderSpec::default()
+    }
 }
 
 /// The library reads positions as f32 and the reference as f64: a face within
@@ -79,20 +99,9 @@ fn feature_edge_counts_match_the_reference_on_every_model_and_view() {
     let mut failures = Vec::new();
     for (name, mesh) in models() {
         for (view, cam) in views(&mesh) {
-            let spec = RenderSpec {
-                width: 200,
-                height: 120,
-                band: 120,
-                mode: ModeSpec::Dashed,
-                ..RenderSpec::default()
-            };
-            let rf = reference_frame(&mesh, &cam, &spec).unwrap();
+            let rf = reference_frame(&mesh, &cam, &spec(EngineSpec::ZBuffer)).unwrap();
             for engine in [EngineSpec::Fast, EngineSpec::CodeFill] {
-                let spec = RenderSpec {
-                    engine,
-                    ..spec.clone()
-                };
-                let lib = render_frame(&mesh, &cam, &spec).unwrap();
+                let lib = render_frame(&mesh, &cam, &spec(engine)).unwrap();
                 let lib = count(&lib.stats);
                 println!(
                     "{name} {view} {}: library {lib:?}, reference {}",
@@ -127,24 +136,13 @@ fn teapot_seam_of_negative_zero_welds() {
         .filter(|p| p.iter().any(|c| *c == 0.0 && c.is_sign_negative()))
         .count();
     assert!(negative > 0, "the teapot has no -0.0 coordinate any more");
-    let (c, r) = bounds(&mesh);
-    let cam = CameraSpec {
-        eye: [c[0], c[1] + 4.0 * r, c[2]],
-        target: c,
-        up: [0.0, 0.0, -1.0],
-        projection: ProjectionSpec::Orthographic {
+    let (_, r) = bounds(&mesh);
+    let cam = above(
+        &mesh,
+        ProjectionSpec::Orthographic {
             half_height: 1.2 * r,
         },
-        near: 0.1 * r,
-        far: 10.0 * r,
-    };
-    let spec = RenderSpec {
-        width: 200,
-        height: 120,
-        band: 120,
-        mode: ModeSpec::Dashed,
-        ..RenderSpec::default()
-    };
+    );
     // The same mesh with every -0.0 written as 0.0: its count is the welded one.
     let mut positive = mesh.clone();
     for p in &mut positive.vertices {
@@ -153,15 +151,10 @@ fn teapot_seam_of_negative_zero_welds() {
         }
     }
     for engine in [EngineSpec::Fast, EngineSpec::CodeFill] {
-        let spec = RenderSpec {
-            engine,
-            ..spec.clone()
-        };
-        let a = count(&render_frame(&mesh, &cam, &spec).unwrap().stats);
-        let b = count(&render_frame(&positive, &cam, &spec).unwrap().stats);
+        let frame_a = render_frame(&mesh, &cam, &spec(engine)).unwrap();
+        let frame_b = render_frame(&positive, &cam, &spec(engine)).unwrap();
+        let (a, b) = (count(&frame_a.stats), count(&frame_b.stats));
         assert_eq!(a, b, "{}: -0.0 and 0.0 weld differently", engine.name());
-        let frame_a = render_frame(&mesh, &cam, &spec).unwrap();
-        let frame_b = render_frame(&positive, &cam, &spec).unwrap();
         assert!(
             frame_a.lines == frame_b.lines,
             "{}: the line pixels differ",

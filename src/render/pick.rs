@@ -7,8 +7,7 @@ use fixed::types::extra::LeEqU32;
 use heapless::Vec;
 
 use super::bend::{Bend, FaceView};
-use super::coverage::covers;
-use super::coverage::covers_centre;
+use super::coverage::{covers, covers_centre};
 use super::lines::{edge_on_screen, walk_segment, REACH_COVERING};
 use super::transform::{ProjectedVertex, ScreenVertex};
 use super::zband::DepthPlane;

@@ -1,6 +1,6 @@
 //! Clipping: polygons and segments to the near/far slab, segments to a screen rectangle.
 
-use super::vector::{add, scale, sub, V3};
+use super::vector::{add, scale, sub, weld_key, V3};
 
 /// Clips a polygon (eye space) to `near <= -z <= far`. The intersection point of an edge
 /// is computed from its end points in a canonical order, so that two faces sharing the
@@ -30,8 +30,11 @@ fn clip_plane(poly: &[V3], keep: impl Fn(&V3) -> bool, w: f64) -> Vec<V3> {
 
 /// The point of segment p q at depth -z = w, computed in a canonical order of p and q.
 fn intersect_w(p: V3, q: V3, w: f64) -> V3 {
-    let key = |v: &V3| v.map(|c| (c + 0.0).to_bits());
-    let (a, b) = if key(&p) <= key(&q) { (p, q) } else { (q, p) };
+    let (a, b) = if weld_key(&p) <= weld_key(&q) {
+        (p, q)
+    } else {
+        (q, p)
+    };
     let (wa, wb) = (-a[2], -b[2]);
     let t = (w - wa) / (wb - wa);
     let mut r = add(a, scale(sub(b, a), t));

@@ -5,7 +5,7 @@ use std::collections::HashMap;
 use super::camera::Camera;
 use super::clip::{clip_polygon, clip_segment, clip_to_rect};
 use super::coverage::{covers, quantize};
-use super::vector::{add, cross, dot, newell_normal, norm, scale, sub, V3};
+use super::vector::{add, cross, dot, newell_normal, norm, scale, sub, weld_key, V3};
 use super::{EdgeKind, LineSample, RefEdge, RefFace, RefFrame, DEPTH_EPS, SAMPLE_STEP, TILE};
 use crate::frame::{CameraSpec, CullSpec, MeshData, ModeSpec, RenderSpec};
 
@@ -42,8 +42,7 @@ pub fn reference_frame(
         .iter()
         .map(|p| {
             let n = weld.len() as u32;
-            // -0.0 welds with 0.0 (CONVENTIONS.md): `+ 0.0` makes it 0.0.
-            *weld.entry(p.map(|c| (c + 0.0).to_bits())).or_insert(n)
+            *weld.entry(weld_key(p)).or_insert(n)
         })
         .collect();
     let mut edge_index: HashMap<(u32, u32), usize> = HashMap::new();

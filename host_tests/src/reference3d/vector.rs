@@ -26,6 +26,12 @@ pub(super) fn norm(a: V3) -> f64 {
     dot(a, a).sqrt()
 }
 
+/// A position's weld key: its bit patterns with -0.0 read as 0.0 (CONVENTIONS.md;
+/// `+ 0.0` turns -0.0 into 0.0 and leaves every other value alone).
+pub(super) fn weld_key(p: &V3) -> [u64; 3] {
+    p.map(|c| (c + 0.0).to_bits())
+}
+
 /// Newell normal of a polygon (not normalized; zero for degenerate polygons).
 pub fn newell_normal(pts: &[V3]) -> V3 {
     let n = pts.len();

@@ -239,6 +239,9 @@ fn negative_zero_welds_with_zero() {
     let edges = buffers.build(&mesh, 30.0).edges();
     assert_eq!(edges.len(), 5);
     assert_eq!(count_kind(edges, EdgeKind::Boundary), 4);
+    // A face with 0 and -0 as two corners is still a valid face: only fewer than
+    // three corners make one degenerate.
+    assert!(Mesh::new(&vertices, &[0, 4, 1], &[0, 3]).is_ok());
 }
 
 #[test]
