@@ -39,36 +39,33 @@ pub(super) enum Corners {
     Pool { start: u16 },
 }
 
-/// One facet crossing the current row.
+/// One facet crossing the current row, 76 bytes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) struct Facet {
-    /// `0xFFFF - face`: the low half of the row entries it writes.
-    pub id: u32,
-    pub face: u16,
-    pub corners: Corners,
-    /// Its first row, and the row after its last.
-    first: i32,
-    pub end: i32,
-    /// Rows before this take the fast path: both chains hold them.
-    fast_until: i32,
-    /// Depth per pixel right and per row down (16.16, wrapping), and at column
-    /// `xa` of the current row.
+    /// Monotone: the two chains' current edges (`left` walks corners forward,
+    /// `right` backward; either may be the left one on screen). Both are spent
+    /// at the facet's first row until it is reached, and hold x = 0 (no span).
+    pub left: EdgeStep,
+    pub right: EdgeStep,
+    /// Depth per pixel right and per row down (16.16, wrapping), and at column 0
+    /// of the current row.
     a: i32,
     b: i32,
     drow: u32,
-    xa: i32,
+    /// `0xFFFF - face`: the low half of the row entries it writes.
+    id: u32,
     /// Depths this close to the nearest so far are a tie (16.16).
     tie: u32,
-    /// Monotone: the two chains' current edges (`left` walks corners forward,
-    /// `right` backward; either may be the left one on screen) and their lower
-    /// corners' local indices.
-    left: EdgeStep,
-    right: EdgeStep,
+    /// The row after its last.
+    pub end: i32,
+    face: u16,
+    corners: Corners,
+    /// The chains' lower corners' local indices, the bottom corner, the corners.
     at: [u8; 2],
     bottom: u8,
     n: u8,
     monotone: bool,
-    /// Corner positions (half-units) of a facet of up to four corners, so that
+    /// Corner positions (`2^-S` px) of a facet of up to four corners, so that
     /// moving a chain on reads no mesh data.
     pts: [(i16, i16); 4],
 }
@@ -119,22 +116,20 @@ pub(super) fn facet(
     if row >= end || ymin == ymax {
         return None;
     }
-    let (a, b, drow, xa) = plane(pts, row, s);
+    let (a, b, drow) = plane(pts, row, s);
+    let first = row_at(2 * ymin, s);
     Some(Facet {
-        id: 0xFFFF - u32::from(face),
-        face,
-        corners,
-        first: row_at(2 * ymin, s),
-        end,
-        fast_until: i32::MIN,
+        // Chains are set up on the first row.
+        left: EdgeStep::spent(first),
+        right: EdgeStep::spent(first),
         a,
         b,
         drow,
-        xa,
+        id: 0xFFFF - u32::from(face),
         tie: tie(a, b),
-        // Chains start spent before any row and are set up on the first row.
-        left: EdgeStep::spent(i32::MIN),
-        right: EdgeStep::spent(i32::MIN),
+        end,
+        face,
+        corners,
         at: [top as u8; 2],
         bottom: bottom as u8,
         n: n as u8,
@@ -150,10 +145,10 @@ pub(super) fn facet(
 }
 
 /// The depth plane through the fan triangle of largest screen area: steps per
-/// pixel and per row, and the depth at the centre of column `xa` of `row`.
-fn plane(pts: &[FastVertex], row: i32, s: u32) -> (i32, i32, u32, i32) {
+/// pixel and per row, and the depth at the centre of column 0 of `row`.
+fn plane(pts: &[FastVertex], row: i32, s: u32) -> (i32, i32, u32) {
     let Some(&v0) = pts.first() else {
-        return (0, 0, 0, 0);
+        return (0, 0, 0);
     };
     let (x0, y0) = (f32::from(v0.x), f32::from(v0.y));
     let (mut best, mut tri) = (0.0f32, (v0, v0));
@@ -169,7 +164,7 @@ fn plane(pts: &[FastVertex], row: i32, s: u32) -> (i32, i32, u32, i32) {
     let xa = i32::from(v0.x) >> s;
     let ya = i32::from(v0.y) >> s;
     if best == 0.0 {
-        return (0, 0, v0.d, xa);
+        return (0, 0, v0.d);
     }
     let (p, q) = tri;
     let (dx1, dy1) = (f32::from(p.x) - x0, f32::from(p.y) - y0);
@@ -187,8 +182,10 @@ fn plane(pts: &[FastVertex], row: i32, s: u32) -> (i32, i32, u32, i32) {
     let oy = (ya as f32 + 0.5) * unit - y0;
     let c = v0.d.wrapping_add((a_sub * ox + b_sub * oy) as i32 as u32);
     let (a, b) = ((a_sub * unit) as i32, (b_sub * unit) as i32);
-    let drow = c.wrapping_add(b.wrapping_mul(row - ya) as u32);
-    (a, b, drow, xa)
+    let drow = c
+        .wrapping_add(b.wrapping_mul(row - ya) as u32)
+        .wrapping_sub(a.wrapping_mul(xa) as u32);
+    (a, b, drow)
 }
 
 impl Facet {
@@ -198,57 +195,52 @@ impl Facet {
         most.min(u32::from(u16::MAX)) as u16
     }
 
-    /// Fills `row` (the entries of screen row `y`) with this facet's span(s) where
-    /// nearer, then steps to the next row. Returns the spans filled.
+    /// True when both chains hold row `y`: the row is one span between them.
     #[inline(always)]
-    pub fn fill_row<C: CornerSource>(
+    pub fn holds(&self, y: i32) -> bool {
+        y < self.left.end && y < self.right.end
+    }
+
+    /// The span between the two chains' crossings, then both step a row and the
+    /// depth a row: the row loop's fast path, when [`holds`](Self::holds).
+    #[inline(always)]
+    pub fn fill_span_row(&mut self, row: &mut [u32]) -> u32 {
+        let (x0, x1) = (self.left.pixel(), self.right.pixel());
+        let spans = self.span(x0.min(x1), x0.max(x1), row);
+        self.left.next_row();
+        self.right.next_row();
+        self.drow = self.drow.wrapping_add(self.b as u32);
+        spans
+    }
+
+    /// Row `y` when a chain has run out: moves the chains on (or fills a polygon
+    /// that is not monotone by the even-odd rule), then steps a row. Returns the
+    /// spans filled.
+    #[inline(never)]
+    pub fn fill_row_slow<C: CornerSource>(
         &mut self,
         src: &C,
         y: i32,
         s: u32,
         row: &mut [u32],
     ) -> Result<u32, Error> {
-        let mut spans = 0;
-        if y < self.fast_until {
-            spans += self.fill_span_row(s, row);
-        } else if y < self.first {
-        } else if self.monotone {
-            self.next_edges(src, y, s);
-            if y < self.fast_until {
-                spans += self.fill_span_row(s, row);
+        if self.monotone {
+            if self.left.end <= y {
+                self.next_edge(src, 0, y, s);
             }
-        } else {
-            spans += self.fill_even_odd(src, y, s, row)?;
+            if self.right.end <= y {
+                self.next_edge(src, 1, y, s);
+            }
+            if self.holds(y) {
+                return Ok(self.fill_span_row(row));
+            }
+            // Before the first row (a clipped facet) or after the last: no span.
+            self.drow = self.drow.wrapping_add(self.b as u32);
+            return Ok(0);
         }
+        let spans = self.fill_even_odd(src, y, s, row)?;
         self.drow = self.drow.wrapping_add(self.b as u32);
         Ok(spans)
-    }
-
-    /// The span between the two chains' crossings, then both step a row.
-    #[inline(always)]
-    fn fill_span_row(&mut self, s: u32, row: &mut [u32]) -> u32 {
-        let (x0, x1) = (self.left.pixel(s), self.right.pixel(s));
-        let spans = self.span(x0.min(x1), x0.max(x1), row);
-        self.left.next_row();
-        self.right.next_row();
-        spans
-    }
-
-    /// Moves both chains on to the edges that hold row `y`; the fast path then
-    /// holds from `y` when both have one.
-    #[inline(never)]
-    fn next_edges<C: CornerSource>(&mut self, src: &C, y: i32, s: u32) {
-        if self.left.end <= y {
-            self.next_edge(src, 0, y, s);
-        }
-        if self.right.end <= y {
-            self.next_edge(src, 1, y, s);
-        }
-        self.fast_until = if self.left.end > y && self.right.end > y {
-            self.left.end.min(self.right.end)
-        } else {
-            i32::MIN
-        };
     }
 
     /// Moves chain `c` (0 forward, 1 backward) on to the edge that holds row `y`,
@@ -262,8 +254,9 @@ impl Facet {
         } else {
             (usize::from(self.at[1]), self.right)
         };
-        // Rows end at the bottom corner; a chain that reached it stays spent.
-        while edge.end <= y && !(at == bottom && edge.end != i32::MIN) {
+        // Rows end at the bottom corner; a chain that reached it stays spent (the
+        // top corner is never the bottom one).
+        while edge.end <= y && at != bottom {
             let to = match c {
                 0 if at + 1 == n => 0,
                 0 => at + 1,
@@ -335,9 +328,7 @@ impl Facet {
         if x0 >= x1 {
             return 0;
         }
-        let mut d = self
-            .drow
-            .wrapping_add(self.a.wrapping_mul(x0 - self.xa) as u32);
+        let mut d = self.drow.wrapping_add(self.a.wrapping_mul(x0) as u32);
         let (id, a, tie) = (self.id, self.a as u32, self.tie);
         // x0 < x1 <= row.len(): the range is in bounds.
         if let Some(cells) = row.get_mut(x0 as usize..x1 as usize) {

@@ -91,7 +91,13 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                 };
                 let mut i = 0;
                 while let Some(facet) = self.facets.get_mut(i) {
-                    stats.spans += facet.fill_row(&src, yi, s, row).map_err(Error::widen)?;
+                    stats.spans += if facet.holds(yi) {
+                        facet.fill_span_row(row)
+                    } else {
+                        facet
+                            .fill_row_slow(&src, yi, s, row)
+                            .map_err(Error::widen)?
+                    };
                     if yi + 1 >= facet.end {
                         self.facets.swap_remove(i);
                     } else {

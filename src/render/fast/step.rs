@@ -77,12 +77,6 @@ impl Stepper {
             self.q -= 1;
         }
     }
-
-    /// True when the exact value is above the quotient.
-    #[inline(always)]
-    pub fn inexact(&self) -> bool {
-        self.r > 0
-    }
 }
 
 /// First row whose centre is at or below `y` (half-units): `ceil((y - h) / p)`.
@@ -91,11 +85,18 @@ pub(super) fn row_at(y: i32, s: u32) -> i32 {
     (y + (1 << s) - 1) >> (s + 1)
 }
 
-/// One polygon edge stepped row by row: the first pixel whose centre is right of
-/// (or on) its crossing, by the top-left rule.
+/// One polygon edge stepped row by row in 16.16 px: `x` is the edge's crossing of
+/// the current row's centre plus `0x7FFF`, so `x >> 16` is the first pixel whose
+/// centre is right of (or on) the crossing: the top-left rule. Set up in `f32`
+/// from the edge's top end only, with one division, so every face that shares the
+/// edge steps the very same integers (watertight). The crossing is within about
+/// `2^-11` px of the exact one (the slope rounded to `2^-16` px a row, the start
+/// rounded in `f32`): a pixel centre closer than that to an edge may fall on the
+/// other side of it.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub(super) struct EdgeStep {
-    x: Stepper,
+    x: i32,
+    dx: i32,
     /// The row after its last.
     pub end: i32,
 }
@@ -103,8 +104,6 @@ pub(super) struct EdgeStep {
 impl EdgeStep {
     /// The edge from `a` to `b` (half-units, either order) at `row`, or `None` when
     /// no row centre at or after `row` lies in its rows (`top <= yc < bottom`).
-    /// Computed from the top end, so every face that shares the edge gets the very
-    /// same crossings.
     pub fn new(a: (i32, i32), b: (i32, i32), row: i32, s: u32) -> Option<Self> {
         let ((x0, y0), (x1, y1)) = if a.1 <= b.1 { (a, b) } else { (b, a) };
         let (first, end) = (row_at(y0, s), row_at(y1, s));
@@ -112,30 +111,36 @@ impl EdgeStep {
         if row >= end {
             return None;
         }
-        Some(Self {
-            x: Stepper::new(y0, x0, y1 - y0, x1 - x0, row - first, s),
-            end,
-        })
+        // Half-units to 16.16 px: 2^(15 - S). Coordinates inside the guard box are
+        // at most 4,096 px, 2^28 in 16.16: sums of two fit i32.
+        let sh = 15 - s;
+        let k = (x1 - x0) as f32 / (y1 - y0) as f32;
+        let down = ((2 * first + 1) << s) - y0;
+        let start = (down as f32 * k * (1u32 << sh) as f32) as i32;
+        // An edge of one row never steps, so a slope beyond i32 (saturated) is unused.
+        let dx = (k * 65536.0) as i32;
+        let x = (x0 << sh)
+            .wrapping_add(start)
+            .wrapping_add(0x7FFF)
+            .wrapping_add(dx.wrapping_mul(row - first));
+        Some(Self { x, dx, end })
     }
 
-    /// A spent edge whose rows ended before `end`.
-    pub fn spent(end: i32) -> Self {
-        Self {
-            x: Stepper::default(),
-            end,
-        }
+    /// A spent edge whose rows ended before `end`, at pixel 0.
+    pub const fn spent(end: i32) -> Self {
+        Self { x: 0, dx: 0, end }
     }
 
-    /// The first pixel at or right of the crossing: `ceil((x - h) / p)`.
+    /// The first pixel at or right of the crossing.
     #[inline(always)]
-    pub fn pixel(&self, s: u32) -> i32 {
-        (self.x.q + (1 << s) - 1 + i32::from(self.x.inexact())) >> (s + 1)
+    pub fn pixel(&self) -> i32 {
+        self.x >> 16
     }
 
     /// One row down.
     #[inline(always)]
     pub fn next_row(&mut self) {
-        self.x.forward();
+        self.x = self.x.wrapping_add(self.dx);
     }
 }
 
@@ -146,5 +151,5 @@ pub(super) fn crossing(a: (i32, i32), b: (i32, i32), row: i32, s: u32) -> Option
     if row < row_at(y0, s) || row >= row_at(y1, s) {
         return None;
     }
-    EdgeStep::new(a, b, row, s).map(|e| e.pixel(s))
+    EdgeStep::new(a, b, row, s).map(|e| e.pixel())
 }
