@@ -204,7 +204,7 @@ impl Facet {
     /// The span between the two chains' crossings, then both step a row and the
     /// depth a row: the row loop's fast path, when [`holds`](Self::holds).
     #[inline(always)]
-    pub fn fill_span_row(&mut self, row: &mut [u32]) -> u32 {
+    pub fn fill_span_row(&mut self, row: &mut DepthRow<'_>) -> u32 {
         let (x0, x1) = (self.left.pixel(), self.right.pixel());
         let spans = self.span(x0.min(x1), x0.max(x1), row);
         self.left.next_row();
@@ -222,7 +222,7 @@ impl Facet {
         src: &C,
         y: i32,
         s: u32,
-        row: &mut [u32],
+        row: &mut DepthRow<'_>,
     ) -> Result<u32, Error> {
         if self.monotone {
             if self.left.end <= y {
@@ -296,7 +296,7 @@ impl Facet {
         src: &C,
         y: i32,
         s: u32,
-        row: &mut [u32],
+        row: &mut DepthRow<'_>,
     ) -> Result<u32, Error> {
         let mut spans = 0;
         let mut xs: Vec<i32, MAX_CORNERS> = Vec::new();
@@ -322,16 +322,17 @@ impl Facet {
 
     /// Depth-tests pixels `x0..x1` of the row.
     #[inline(always)]
-    fn span(&self, x0: i32, x1: i32, row: &mut [u32]) -> u32 {
+    fn span(&self, x0: i32, x1: i32, row: &mut DepthRow<'_>) -> u32 {
         let x0 = x0.max(0);
-        let x1 = x1.min(row.len() as i32);
+        let x1 = x1.min(row.cells.len() as i32);
         if x0 >= x1 {
             return 0;
         }
+        (row.lo, row.hi) = (row.lo.min(x0), row.hi.max(x1));
         let mut d = self.drow.wrapping_add(self.a.wrapping_mul(x0) as u32);
         let (id, a, tie) = (self.id, self.a as u32, self.tie);
         // x0 < x1 <= row.len(): the range is in bounds.
-        if let Some(cells) = row.get_mut(x0 as usize..x1 as usize) {
+        if let Some(cells) = row.cells.get_mut(x0 as usize..x1 as usize) {
             for cell in cells {
                 let v = (d & 0xFFFF_0000) | id;
                 let c = *cell;
@@ -348,6 +349,37 @@ impl Facet {
             }
         }
         1
+    }
+}
+
+/// One row of nearest-face entries, `depth << 16 | (0xFFFF - face)` (0: none),
+/// with the columns written since it was last cleared.
+#[derive(Debug)]
+pub(super) struct DepthRow<'a> {
+    pub cells: &'a mut [u32],
+    lo: i32,
+    hi: i32,
+}
+
+impl<'a> DepthRow<'a> {
+    /// The row over `cells`, all cleared.
+    pub fn new(cells: &'a mut [u32]) -> Self {
+        cells.fill(0);
+        Self {
+            cells,
+            lo: i32::MAX,
+            hi: 0,
+        }
+    }
+
+    /// Clears the columns written: a face covers a part of most rows.
+    pub fn clear(&mut self) {
+        if self.lo < self.hi {
+            if let Some(cells) = self.cells.get_mut(self.lo as usize..self.hi as usize) {
+                cells.fill(0);
+            }
+        }
+        (self.lo, self.hi) = (i32::MAX, 0);
     }
 }
 

@@ -61,7 +61,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             ..
         } = ws;
         let (face_heads, line_heads) = heads.split_at(height);
-        let row = row.get_mut(..width).unwrap_or_default();
+        let mut row = DepthRow::new(row.get_mut(..width).unwrap_or_default());
         let words = width.div_ceil(32);
         let masks = masks.get_mut(..2 * words).unwrap_or_default();
         let mut pool_used = 0usize;
@@ -83,25 +83,27 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                     f = face_links.get(usize::from(f)).copied().unwrap_or(NONE);
                 }
                 stats.peak_faces = stats.peak_faces.max(self.facets.len() as u32);
-                row.fill(0);
+                row.clear();
                 let src = Source {
                     mesh,
                     cache: vertices,
                     pool,
                 };
-                let mut i = 0;
-                while let Some(facet) = self.facets.get_mut(i) {
-                    stats.spans += if facet.holds(yi) {
-                        facet.fill_span_row(row)
-                    } else {
-                        facet
-                            .fill_row_slow(&src, yi, s, row)
-                            .map_err(Error::widen)?
-                    };
-                    if yi + 1 >= facet.end {
-                        self.facets.swap_remove(i);
-                    } else {
-                        i += 1;
+                let (spans, slow) = fill_held(&mut self.facets, yi, &mut row);
+                stats.spans += spans;
+                if slow {
+                    let mut i = 0;
+                    while let Some(facet) = self.facets.get_mut(i) {
+                        if !facet.holds(yi) {
+                            stats.spans += facet
+                                .fill_row_slow(&src, yi, s, &mut row)
+                                .map_err(Error::widen)?;
+                        }
+                        if yi + 1 >= facet.end {
+                            self.facets.swap_remove(i);
+                        } else {
+                            i += 1;
+                        }
                     }
                 }
             }
@@ -118,15 +120,23 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                 let beside = |face: u16, ends: &[(i16, i16); 2], e: (i32, i32)| {
                     let corners = mesh.face(usize::from(face));
                     let corner = |v: &u32| cache.get(*v as usize).copied().unwrap_or_default();
-                    corners.iter().any(|v| {
+                    let touches = corners.iter().any(|v| {
                         let p = corner(v);
                         p.inside() && ends.contains(&(p.x, p.y))
-                    }) && corners.iter().all(|v| corner(v).inside())
+                    });
+                    if !touches {
+                        Beside::Apart
+                    } else if corners.iter().all(|v| corner(v).inside())
                         && !covers(corners.iter().map(|v| corner(v).half()), e)
+                    {
+                        Beside::Misses
+                    } else {
+                        Beside::Covers
+                    }
                 };
                 let mut i = 0;
                 while let Some(line) = self.lines.get_mut(i) {
-                    if line.row(yi, s, test, row, slopes, &beside, visible, hidden) {
+                    if line.row(yi, s, test, row.cells, slopes, &beside, visible, hidden) {
                         i += 1;
                     } else {
                         self.lines.swap_remove(i);
@@ -135,16 +145,13 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             }
             let (visible, hidden) = masks.split_at_mut(words);
             if R::ACTIVE {
-                probe_ids(depth, row, ids);
+                probe_ids(depth, row.cells, ids);
                 probe.row(y as u16, ids.get(..width).unwrap_or(&[]), visible, hidden);
-            }
-            if !depth {
-                row.fill(0);
             }
             stats.spans += emit_row(
                 y as u16,
                 settings,
-                row,
+                row.cells,
                 visible,
                 hidden,
                 palette,
@@ -479,6 +486,23 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         }
         Ok(())
     }
+}
+
+/// The row loop's fast path: every facet whose chains both hold row `y` fills its
+/// span and steps a row. Returns the spans filled, and whether a facet needs the
+/// slow path (a chain to move on) or leaves after this row.
+#[inline(always)]
+fn fill_held(facets: &mut [Facet], y: i32, row: &mut DepthRow<'_>) -> (u32, bool) {
+    let (mut spans, mut slow) = (0, false);
+    for facet in facets {
+        if facet.holds(y) {
+            spans += facet.fill_span_row(row);
+        } else {
+            slow = true;
+        }
+        slow |= y + 1 >= facet.end;
+    }
+    (spans, slow)
 }
 
 fn set_slope(slopes: &mut [u16], f: u16, slope: u16) {

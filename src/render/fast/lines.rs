@@ -34,6 +34,19 @@ pub(super) struct ActiveLine {
     d: u32,
     dd: i32,
     bias: u32,
+    /// The last nearer face found apart from the line's ends (`NONE` at first).
+    apart: u16,
+}
+
+/// A face nearer than a line's pixel, seen from the line's ends.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Beside {
+    /// No corner of the face is at an end of the line: it hides the pixel.
+    Apart,
+    /// A corner is at an end, and the face covers the edge point: it hides it.
+    Covers,
+    /// A corner is at an end, and the face does not cover the edge point.
+    Misses,
 }
 
 /// What the line pass does with a pixel.
@@ -104,6 +117,7 @@ impl ActiveLine {
             d,
             dd,
             bias: dd.unsigned_abs().saturating_add(1 << 16),
+            apart: super::NONE,
         })
     }
 
@@ -111,6 +125,7 @@ impl ActiveLine {
     /// (`row` is the finished row of face entries); returns false once the line
     /// has no pixel left.
     #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
     pub fn row(
         &mut self,
         y: i32,
@@ -118,60 +133,86 @@ impl ActiveLine {
         test: LineTest,
         row: &[u32],
         slopes: &[u16],
-        beside: &impl Fn(u16, &[(i16, i16); 2], (i32, i32)) -> bool,
+        beside: &impl Fn(u16, &[(i16, i16); 2], (i32, i32)) -> Beside,
         visible: &mut [u32],
         hidden: &mut [u32],
     ) -> bool {
-        loop {
-            let k = i32::from(self.k);
-            let m = self.v.q >> (s + 1);
+        let sh = s + 1;
+        let (mut k, last) = (i32::from(self.k), i32::from(self.last));
+        let (mut v, mut d) = (self.v, self.d);
+        let more = loop {
+            let m = v.q >> sh;
             let (px, py) = if self.x_major { (k, m) } else { (m, k) };
             if py > y {
-                return true;
+                break true;
             }
-            if py == y && px >= 0 {
-                if let Some(&cell) = row.get(px as usize) {
-                    let hide = test == LineTest::Row && {
-                        let id = cell as u16;
-                        let depth = cell & 0xFFFF_0000;
-                        depth > self.d.saturating_add(self.bias)
-                            && id != self.own[0]
-                            && id != self.own[1]
-                            && {
-                                let slope = slopes.get(usize::from(0xFFFF - id)).copied();
-                                let slope = u32::from(slope.unwrap_or(0));
-                                depth
-                                    > self.d.saturating_add(
-                                        self.bias.saturating_add((SLOPE_MARGIN * slope) << 14),
-                                    )
-                            }
-                            && {
-                                let c = (2 * k + 1) << s;
-                                let e = if self.x_major {
-                                    (c, self.v.q)
-                                } else {
-                                    (self.v.q, c)
-                                };
-                                !beside(0xFFFF - id, &self.ends, e)
-                            }
-                    };
-                    let mask = if hide { &mut *hidden } else { &mut *visible };
-                    let x = px as usize;
-                    if let Some(w) = mask.get_mut(x / 32) {
-                        *w |= 1 << (x % 32);
-                    }
+            if let Some(&cell) = row.get(px as usize).filter(|_| py == y) {
+                // Most pixels are in front of the face there: one compare.
+                let hide = test == LineTest::Row
+                    && cell & 0xFFFF_0000 > d.saturating_add(self.bias)
+                    && self.hidden_by(cell, d, k, v.q, s, slopes, beside);
+                let mask = if hide { &mut *hidden } else { &mut *visible };
+                let x = px as usize;
+                if let Some(w) = mask.get_mut(x / 32) {
+                    *w |= 1 << (x % 32);
                 }
             }
-            if self.k == self.last {
-                return false;
+            if k == last {
+                break false;
             }
-            self.k += i16::from(self.dir);
-            self.d = self.d.wrapping_add(self.dd as u32);
+            k += i32::from(self.dir);
+            d = d.wrapping_add(self.dd as u32);
             if self.dir > 0 {
-                self.v.forward();
+                v.forward();
             } else {
-                self.v.back();
+                v.back();
             }
+        };
+        (self.k, self.v, self.d) = (k as i16, v, d);
+        more
+    }
+
+    /// Does the face of row entry `cell` (nearer than the line's depth `d` by more
+    /// than its bias) hide the line's pixel at centre `k`, minor coordinate `q`?
+    /// Not when it is one of the line's own faces, not within a share of its own
+    /// slope, and not when it only touches the line at an end (tested exactly).
+    #[allow(clippy::too_many_arguments)]
+    #[inline(never)]
+    fn hidden_by(
+        &mut self,
+        cell: u32,
+        d: u32,
+        k: i32,
+        q: i32,
+        s: u32,
+        slopes: &[u16],
+        beside: &impl Fn(u16, &[(i16, i16); 2], (i32, i32)) -> Beside,
+    ) -> bool {
+        let id = cell as u16;
+        if id == self.own[0] || id == self.own[1] {
+            return false;
+        }
+        let face = 0xFFFF - id;
+        let slope = u32::from(slopes.get(usize::from(face)).copied().unwrap_or(0));
+        if cell & 0xFFFF_0000
+            <= d.saturating_add(self.bias.saturating_add((SLOPE_MARGIN * slope) << 14))
+        {
+            return false;
+        }
+        // Most hidden pixels are behind a face that does not touch the line's ends:
+        // the last face found so is kept.
+        if face == self.apart {
+            return true;
+        }
+        let c = (2 * k + 1) << s;
+        let e = if self.x_major { (c, q) } else { (q, c) };
+        match beside(face, &self.ends, e) {
+            Beside::Apart => {
+                self.apart = face;
+                true
+            }
+            Beside::Covers => true,
+            Beside::Misses => false,
         }
     }
 }

@@ -59,8 +59,8 @@ use crate::camera::{dot, Camera};
 use crate::mesh::{bit, set_bit, EdgeKind, Viewpoint};
 use crate::{Error, SpanSink, Viewport};
 use clip::{clip_polygon, clip_segment};
-use facets::{facet, ClipPolygon, CornerSource, Corners, Facet};
-use lines::{ActiveLine, LineTest};
+use facets::{facet, ClipPolygon, CornerSource, Corners, DepthRow, Facet};
+use lines::{ActiveLine, Beside, LineTest};
 use row_out::{emit_row, Shades};
 use view::{guard_px, ScreenMap};
 
