@@ -25,8 +25,13 @@ pub const MAX_CORNERS: usize = 64;
 /// sixteenth of a pixel's depth change (at S = 4), plus rounding: the tie is one
 /// depth unit plus `(|a| + |b|) / 16`.
 fn tie(a: i32, b: i32) -> u32 {
-    (1u32 << 16).saturating_add((a.unsigned_abs() >> 4).saturating_add(b.unsigned_abs() >> 4))
+    let slope = (a.unsigned_abs() >> 4).saturating_add(b.unsigned_abs() >> 4);
+    (1u32 << 16).saturating_add(slope).min(MAX_TIE)
 }
+
+/// The largest tie, 128 depth units: half the margin kept free below and above
+/// the frame's depths (`view::MARGIN`), so that `depth - tie` never wraps.
+const MAX_TIE: u32 = 128 << 16;
 
 /// Where a facet's corners are.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -195,6 +200,11 @@ impl Facet {
         most.min(u32::from(u16::MAX)) as u16
     }
 
+    /// The face it belongs to.
+    pub fn face(&self) -> u16 {
+        self.face
+    }
+
     /// True when both chains hold row `y`: the row is one span between them.
     #[inline(always)]
     pub fn holds(&self, y: i32) -> bool {
@@ -202,8 +212,9 @@ impl Facet {
     }
 
     /// The span between the two chains' crossings, then both step a row and the
-    /// depth a row: the row loop's fast path, when [`holds`](Self::holds).
-    #[inline(always)]
+    /// depth a row: the row loop's fast path, when [`holds`](Self::holds). Out of
+    /// line, so that its loop keeps its few values in registers.
+    #[inline(never)]
     pub fn fill_span_row(&mut self, row: &mut DepthRow<'_>) -> u32 {
         let (x0, x1) = (self.left.pixel(), self.right.pixel());
         let spans = self.span(x0.min(x1), x0.max(x1), row);
@@ -329,26 +340,29 @@ impl Facet {
             return 0;
         }
         (row.lo, row.hi) = (row.lo.min(x0), row.hi.max(x1));
-        let mut d = self.drow.wrapping_add(self.a.wrapping_mul(x0) as u32);
-        let (id, a, tie) = (self.id, self.a as u32, self.tie);
+        let d = self.drow.wrapping_add(self.a.wrapping_mul(x0) as u32);
         // x0 < x1 <= row.len(): the range is in bounds.
         if let Some(cells) = row.cells.get_mut(x0 as usize..x1 as usize) {
-            for cell in cells {
-                let v = (d & 0xFFFF_0000) | id;
-                let c = *cell;
-                // Within the tie of the nearest so far, the lower face index wins.
-                let wins = if id > c & 0xFFFF {
-                    v.saturating_add(tie) > c
-                } else {
-                    v > c.saturating_add(tie)
-                };
-                if wins {
-                    *cell = v;
-                }
-                d = d.wrapping_add(a);
-            }
+            depth_span(cells, d, self.a as u32, self.id, self.tie);
         }
         1
+    }
+}
+
+/// Depth-tests `cells` against the facet entries `(d & 0xFFFF_0000) | id`, `d`
+/// stepping by `a` a pixel. The row's facets come in the order of their face
+/// index, so the nearest so far has a lower (or the same) index: the facet takes a
+/// pixel only when nearer by more than its `tie`, and one compare a pixel does it.
+#[inline(always)]
+fn depth_span(cells: &mut [u32], d: u32, a: u32, id: u32, tie: u32) {
+    // Depths lie in 2^24..2^32 - 2^24 and the tie below 2^23: no wrap.
+    let (mut d, mut behind) = (d, d.wrapping_sub(tie));
+    for cell in cells {
+        if (behind & 0xFFFF_0000) | id > *cell {
+            *cell = (d & 0xFFFF_0000) | id;
+        }
+        d = d.wrapping_add(a);
+        behind = behind.wrapping_add(a);
     }
 }
 

@@ -89,23 +89,10 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                     cache: vertices,
                     pool,
                 };
-                let (spans, slow) = fill_held(&mut self.facets, yi, &mut row);
-                stats.spans += spans;
-                if slow {
-                    let mut i = 0;
-                    while let Some(facet) = self.facets.get_mut(i) {
-                        if !facet.holds(yi) {
-                            stats.spans += facet
-                                .fill_row_slow(&src, yi, s, &mut row)
-                                .map_err(Error::widen)?;
-                        }
-                        if yi + 1 >= facet.end {
-                            self.facets.swap_remove(i);
-                        } else {
-                            i += 1;
-                        }
-                    }
-                }
+                stats.spans += self
+                    .facets
+                    .fill_row(&src, yi, s, &mut row)
+                    .map_err(Error::widen)?;
             }
             masks.fill(0);
             if settings.mode.draws_lines() {
@@ -367,10 +354,6 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         let clipped = corners
             .iter()
             .any(|&v| vertices.get(v as usize).is_none_or(|p| !p.inside()));
-        let full = Error::CapacityExceeded {
-            needed: FACETS + 1,
-            capacity: FACETS,
-        };
         if clipped {
             let mut poly = ClipPolygon::new();
             let positions = mesh.vertices();
@@ -396,7 +379,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             pool_used = end;
             if let Some(facet) = facet(&poly, f, corners, y, map.s) {
                 set_slope(slopes, f, facet.slope());
-                self.facets.push(facet).map_err(|_| full)?;
+                self.facets.push(facet)?;
             }
             return Ok(pool_used);
         }
@@ -425,22 +408,18 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         s: u32,
         slopes: &mut [u16],
     ) -> Result<(), Error> {
-        let full = Error::CapacityExceeded {
-            needed: FACETS + 1,
-            capacity: FACETS,
-        };
         let mut slope = 0;
         if bent && !folds(pts) {
             for k in 1..pts.len().saturating_sub(1) {
                 let tri = [0, k, k + 1].map(|i| pts.get(i).copied().unwrap_or_default());
                 if let Some(facet) = facet(&tri, f, Corners::Fan(k as u8), y, s) {
                     slope = slope.max(facet.slope());
-                    self.facets.push(facet).map_err(|_| full)?;
+                    self.facets.push(facet)?;
                 }
             }
         } else if let Some(facet) = facet(pts, f, Corners::Face, y, s) {
             slope = facet.slope();
-            self.facets.push(facet).map_err(|_| full)?;
+            self.facets.push(facet)?;
         }
         set_slope(slopes, f, slope);
         Ok(())
@@ -486,23 +465,6 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         }
         Ok(())
     }
-}
-
-/// The row loop's fast path: every facet whose chains both hold row `y` fills its
-/// span and steps a row. Returns the spans filled, and whether a facet needs the
-/// slow path (a chain to move on) or leaves after this row.
-#[inline(always)]
-fn fill_held(facets: &mut [Facet], y: i32, row: &mut DepthRow<'_>) -> (u32, bool) {
-    let (mut spans, mut slow) = (0, false);
-    for facet in facets {
-        if facet.holds(y) {
-            spans += facet.fill_span_row(row);
-        } else {
-            slow = true;
-        }
-        slow |= y + 1 >= facet.end;
-    }
-    (spans, slow)
 }
 
 fn set_slope(slopes: &mut [u16], f: u16, slope: u16) {

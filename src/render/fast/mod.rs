@@ -35,6 +35,7 @@
 //!
 //! [`Mesh::with_planar_faces`]: crate::mesh::Mesh::with_planar_faces
 
+mod active;
 mod baked;
 mod clip;
 mod facets;
@@ -58,6 +59,7 @@ use super::{Cull, Settings, Stats};
 use crate::camera::{dot, Camera};
 use crate::mesh::{bit, set_bit, EdgeKind, Viewpoint};
 use crate::{Error, SpanSink, Viewport};
+use active::ActiveFacets;
 use clip::{clip_polygon, clip_segment};
 use facets::{facet, ClipPolygon, CornerSource, Corners, DepthRow, Facet};
 use lines::{ActiveLine, Beside, LineTest};
@@ -124,7 +126,7 @@ impl FastWorkspace<'_> {
 /// active on one row (more is `CapacityExceeded`).
 #[derive(Debug)]
 pub struct FastRenderer<Frac: LeEqU32, const FACETS: usize, const LINES: usize> {
-    facets: Vec<Facet, FACETS>,
+    facets: ActiveFacets<FACETS>,
     lines: Vec<ActiveLine, LINES>,
     _frac: PhantomData<Frac>,
 }
@@ -185,7 +187,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
     /// Empty working memory.
     pub const fn new() -> Self {
         Self {
-            facets: Vec::new(),
+            facets: ActiveFacets::new(),
             lines: Vec::new(),
             _frac: PhantomData,
         }
@@ -193,7 +195,8 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
 
     /// Bytes of this engine's active lists with room for `facets` and `lines`.
     pub const fn bytes_for(facets: usize, lines: usize) -> usize {
-        facets * size_of::<Facet>() + lines * size_of::<ActiveLine>()
+        facets * (size_of::<Facet>() + size_of::<u32>() + size_of::<u16>())
+            + lines * size_of::<ActiveLine>()
     }
 }
 

@@ -1,0 +1,109 @@
+//! The active facets of the fast engine: records in slots that stay put while
+//! they are active (no copying on removal), visited in the order of their face
+//! index, so that a facet drawn later never has a lower face index than one
+//! before it in the row: the tie rule then needs one compare a pixel.
+
+use heapless::Vec;
+
+use super::facets::{CornerSource, DepthRow, Facet};
+use crate::Error;
+
+/// Room for `N` active facets: their slots, the active ones' `face << 16 | slot`
+/// in increasing order, and the free slots.
+#[derive(Debug)]
+pub(super) struct ActiveFacets<const N: usize> {
+    slots: Vec<Facet, N>,
+    order: Vec<u32, N>,
+    free: Vec<u16, N>,
+}
+
+impl<const N: usize> ActiveFacets<N> {
+    /// None active.
+    pub const fn new() -> Self {
+        Self {
+            slots: Vec::new(),
+            order: Vec::new(),
+            free: Vec::new(),
+        }
+    }
+
+    /// Forgets every facet.
+    pub fn clear(&mut self) {
+        self.slots.clear();
+        self.order.clear();
+        self.free.clear();
+    }
+
+    /// Facets active.
+    pub fn len(&self) -> usize {
+        self.order.len()
+    }
+
+    /// Makes `facet` active, in face order; `CapacityExceeded` when `N` are.
+    pub fn push(&mut self, facet: Facet) -> Result<(), Error> {
+        let full = Error::CapacityExceeded {
+            needed: N + 1,
+            capacity: N,
+        };
+        let face = u32::from(facet.face());
+        let slot = match self.free.pop() {
+            Some(slot) => {
+                if let Some(s) = self.slots.get_mut(usize::from(slot)) {
+                    *s = facet;
+                }
+                slot
+            }
+            None => {
+                self.slots.push(facet).map_err(|_| full)?;
+                (self.slots.len() - 1) as u16
+            }
+        };
+        let key = face << 16 | u32::from(slot);
+        let at = self.order.partition_point(|&k| k < key);
+        // Shifted by hand: a few words, where a call to `memmove` costs more.
+        let mut carry = key;
+        for k in self.order.get_mut(at..).unwrap_or_default() {
+            core::mem::swap(k, &mut carry);
+        }
+        self.order.push(carry).map_err(|_| full)
+    }
+
+    /// Fills row `y` of `row` with every active facet's span(s), in face order,
+    /// steps them a row and drops those that end. Returns the spans filled.
+    pub fn fill_row<C: CornerSource>(
+        &mut self,
+        src: &C,
+        y: i32,
+        s: u32,
+        row: &mut DepthRow<'_>,
+    ) -> Result<u32, Error> {
+        let (mut spans, mut kept) = (0, 0);
+        let Self {
+            slots, order, free, ..
+        } = self;
+        let n = order.len();
+        for r in 0..n {
+            let key = order.get(r).copied().unwrap_or(0);
+            let slot = (key & 0xFFFF) as u16;
+            let Some(facet) = slots.get_mut(usize::from(slot)) else {
+                break;
+            };
+            spans += if facet.holds(y) {
+                facet.fill_span_row(row)
+            } else {
+                facet.fill_row_slow(src, y, s, row)?
+            };
+            if y + 1 >= facet.end {
+                // Room for every slot: a slot is freed once.
+                let _ = free.push(slot);
+            } else {
+                if let Some(k) = order.get_mut(kept) {
+                    *k = key;
+                }
+                kept += 1;
+            }
+        }
+        order.truncate(kept);
+        Ok(spans)
+    }
+}
