@@ -39,25 +39,30 @@ impl<const N: usize> ActiveFacets<N> {
         self.order.len()
     }
 
-    /// Makes `facet` active, in face order; `CapacityExceeded` when `N` are.
-    pub fn push(&mut self, facet: Facet) -> Result<(), Error> {
+    /// Makes active, in face order, the facet that `build` writes into a free
+    /// slot (`false`: there is none). Returns its steepest slope (0 when none);
+    /// `CapacityExceeded` when `N` are active.
+    pub fn push_with(&mut self, build: impl FnOnce(&mut Facet) -> bool) -> Result<u16, Error> {
         let full = Error::CapacityExceeded {
             needed: N + 1,
             capacity: N,
         };
-        let face = u32::from(facet.face());
         let slot = match self.free.pop() {
-            Some(slot) => {
-                if let Some(s) = self.slots.get_mut(usize::from(slot)) {
-                    *s = facet;
-                }
-                slot
-            }
+            Some(slot) => slot,
             None => {
-                self.slots.push(facet).map_err(|_| full)?;
+                self.slots.push(Facet::EMPTY).map_err(|_| full)?;
                 (self.slots.len() - 1) as u16
             }
         };
+        let Some(facet) = self.slots.get_mut(usize::from(slot)) else {
+            return Ok(0);
+        };
+        if !build(facet) {
+            // Room: the slot was taken from the free ones or is new.
+            let _ = self.free.push(slot);
+            return Ok(0);
+        }
+        let (face, slope) = (u32::from(facet.face()), facet.slope());
         let key = face << 16 | u32::from(slot);
         let at = self.order.partition_point(|&k| k < key);
         // Shifted by hand: a few words, where a call to `memmove` costs more.
@@ -65,7 +70,8 @@ impl<const N: usize> ActiveFacets<N> {
         for k in self.order.get_mut(at..).unwrap_or_default() {
             core::mem::swap(k, &mut carry);
         }
-        self.order.push(carry).map_err(|_| full)
+        self.order.push(carry).map_err(|_| full)?;
+        Ok(slope)
     }
 
     /// Fills row `y` of `row` with every active facet's span(s), in face order,

@@ -80,20 +80,18 @@ pub(super) trait CornerSource {
     fn corner(&self, facet_corners: Corners, face: u16, i: usize) -> FastVertex;
 }
 
-/// The facet with corners `pts` (of face `face`, found again through `corners`)
-/// at `row`, or `None` when it has no row at or after `row`.
+/// Writes into `out` the facet with corners `pts` (of face `face`, found again
+/// through `corners`) at `row`; false when it has no row at or after `row`.
 pub(super) fn facet(
+    out: &mut Facet,
     pts: &[FastVertex],
     face: u16,
     corners: Corners,
     row: i32,
     s: u32,
-) -> Option<Facet> {
+) -> bool {
     let n = pts.len();
     let (mut top, mut bottom, mut ymin, mut ymax) = (0usize, 0usize, i32::MAX, i32::MIN);
-    // Local minima of y around the cycle (flat runs skipped): 1 when monotone.
-    let (mut minima, mut last_dir, mut first_dir) = (0u32, 0i32, 0i32);
-    let mut prev = i32::from(pts.last()?.y);
     for (i, p) in pts.iter().enumerate() {
         let y = i32::from(p.y);
         if y < ymin {
@@ -102,6 +100,59 @@ pub(super) fn facet(
         if y > ymax {
             (ymax, bottom) = (y, i);
         }
+    }
+    // Every triangle is monotone in y.
+    let monotone = n == 3 || local_minima(pts) <= 1;
+    let end = row_at(2 * ymax, s);
+    if row >= end || ymin == ymax {
+        return false;
+    }
+    let (a, b, drow) = plane(pts, row, s);
+    let first = row_at(2 * ymin, s);
+    *out = Facet {
+        // Chains are set up on the first row.
+        left: EdgeStep::spent(first),
+        right: EdgeStep::spent(first),
+        a,
+        b,
+        drow,
+        id: 0xFFFF - u32::from(face),
+        tie: tie(a, b),
+        end,
+        face,
+        corners,
+        at: [top as u8; 2],
+        bottom: bottom as u8,
+        n: n as u8,
+        monotone,
+        pts: {
+            let mut q = [(0i16, 0i16); 4];
+            for (q, p) in q.iter_mut().zip(pts) {
+                *q = (p.x, p.y);
+            }
+            q
+        },
+    };
+    // A facet of up to four corners at its first row sets its chains up now,
+    // from its own corners (a clipped one may start above its first row: its
+    // chains wait, spent, for it).
+    if monotone && n <= out.pts.len() && row >= first {
+        out.next_edge(&OwnCorners, 0, row, s);
+        out.next_edge(&OwnCorners, 1, row, s);
+    }
+    true
+}
+
+/// Local minima of y around the cycle of `pts` (flat runs skipped): 1 when the
+/// polygon is monotone in y.
+fn local_minima(pts: &[FastVertex]) -> u32 {
+    let (mut minima, mut last_dir, mut first_dir) = (0u32, 0i32, 0i32);
+    let Some(last) = pts.last() else {
+        return 0;
+    };
+    let mut prev = i32::from(last.y);
+    for p in pts {
+        let y = i32::from(p.y);
         let dir = (y - prev).signum();
         if dir != 0 {
             if last_dir < 0 && dir > 0 {
@@ -117,36 +168,17 @@ pub(super) fn facet(
     if last_dir < 0 && first_dir > 0 {
         minima += 1;
     }
-    let end = row_at(2 * ymax, s);
-    if row >= end || ymin == ymax {
-        return None;
+    minima
+}
+
+/// The corner source of a facet that keeps its own corners (up to four): never
+/// asked.
+struct OwnCorners;
+
+impl CornerSource for OwnCorners {
+    fn corner(&self, _: Corners, _: u16, _: usize) -> FastVertex {
+        FastVertex::ZERO
     }
-    let (a, b, drow) = plane(pts, row, s);
-    let first = row_at(2 * ymin, s);
-    Some(Facet {
-        // Chains are set up on the first row.
-        left: EdgeStep::spent(first),
-        right: EdgeStep::spent(first),
-        a,
-        b,
-        drow,
-        id: 0xFFFF - u32::from(face),
-        tie: tie(a, b),
-        end,
-        face,
-        corners,
-        at: [top as u8; 2],
-        bottom: bottom as u8,
-        n: n as u8,
-        monotone: minima <= 1,
-        pts: {
-            let mut q = [(0i16, 0i16); 4];
-            for (q, p) in q.iter_mut().zip(pts) {
-                *q = (p.x, p.y);
-            }
-            q
-        },
-    })
 }
 
 /// The depth plane through the fan triangle of largest screen area: steps per
@@ -194,6 +226,25 @@ fn plane(pts: &[FastVertex], row: i32, s: u32) -> (i32, i32, u32) {
 }
 
 impl Facet {
+    /// A placeholder for a free slot.
+    pub const EMPTY: Self = Self {
+        left: EdgeStep::spent(0),
+        right: EdgeStep::spent(0),
+        a: 0,
+        b: 0,
+        drow: 0,
+        id: 0,
+        tie: 0,
+        end: 0,
+        face: 0,
+        corners: Corners::Face,
+        at: [0; 2],
+        bottom: 0,
+        n: 0,
+        monotone: true,
+        pts: [(0, 0); 4],
+    };
+
     /// The steepest depth change per pixel, in whole depth units (saturating).
     pub fn slope(&self) -> u16 {
         let most = self.a.unsigned_abs().max(self.b.unsigned_abs()) >> 16;

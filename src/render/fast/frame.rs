@@ -377,10 +377,10 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                 start: pool_used as u16,
             };
             pool_used = end;
-            if let Some(facet) = facet(&poly, f, corners, y, map.s) {
-                set_slope(slopes, f, facet.slope());
-                self.facets.push(facet)?;
-            }
+            let slope = self
+                .facets
+                .push_with(|out| facet(out, &poly, f, corners, y, map.s))?;
+            set_slope(slopes, f, slope);
             return Ok(pool_used);
         }
         let mut poly: Vec<FastVertex, MAX_CORNERS> = Vec::new();
@@ -412,14 +412,16 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         if bent && !folds(pts) {
             for k in 1..pts.len().saturating_sub(1) {
                 let tri = [0, k, k + 1].map(|i| pts.get(i).copied().unwrap_or_default());
-                if let Some(facet) = facet(&tri, f, Corners::Fan(k as u8), y, s) {
-                    slope = slope.max(facet.slope());
-                    self.facets.push(facet)?;
-                }
+                let fan = Corners::Fan(k as u8);
+                let one = self
+                    .facets
+                    .push_with(|out| facet(out, &tri, f, fan, y, s))?;
+                slope = slope.max(one);
             }
-        } else if let Some(facet) = facet(pts, f, Corners::Face, y, s) {
-            slope = facet.slope();
-            self.facets.push(facet)?;
+        } else {
+            slope = self
+                .facets
+                .push_with(|out| facet(out, pts, f, Corners::Face, y, s))?;
         }
         set_slope(slopes, f, slope);
         Ok(())
