@@ -44,7 +44,22 @@ pub(super) enum Corners {
     Pool { start: u16 },
 }
 
-/// One facet crossing the current row, 76 bytes.
+/// How a facet's row span is filled.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Layout {
+    /// All of it with the first plane.
+    First,
+    /// All of it with the second plane (a split quad's triangle `c0 c2 c3`).
+    Second,
+    /// Split at the diagonal, the first plane's triangle on the left.
+    FirstLeft,
+    /// Split at the diagonal, the first plane's triangle on the right.
+    FirstRight,
+}
+
+/// One facet crossing the current row, 104 bytes: a face, or one fan triangle of
+/// a bent face, or a bent convex quad split at its diagonal `c0 c2` into two
+/// triangles with a plane each (so that a bent quad is one facet, not two).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) struct Facet {
     /// Monotone: the two chains' current edges (`left` walks corners forward,
@@ -52,11 +67,18 @@ pub(super) struct Facet {
     /// at the facet's first row until it is reached, and hold x = 0 (no span).
     pub left: EdgeStep,
     pub right: EdgeStep,
+    /// A split quad's diagonal `c0 c2`, while `layout` splits.
+    diag: EdgeStep,
+    /// Rows before this keep the layout and the chains: the fast path.
+    until: i32,
     /// Depth per pixel right and per row down (16.16, wrapping), and at column 0
-    /// of the current row.
+    /// of the current row: the first plane, then the second.
     a: i32,
     b: i32,
     drow: u32,
+    a2: i32,
+    b2: i32,
+    drow2: u32,
     /// `0xFFFF - face`: the low half of the row entries it writes.
     id: u32,
     /// Depths this close to the nearest so far are a tie (16.16).
@@ -67,9 +89,12 @@ pub(super) struct Facet {
     corners: Corners,
     /// The chains' lower corners' local indices, the bottom corner, the corners.
     at: [u8; 2],
+    top: u8,
     bottom: u8,
     n: u8,
     monotone: bool,
+    split: bool,
+    layout: Layout,
     /// Corner positions (`2^-S` px) of a facet of up to four corners, so that
     /// moving a chain on reads no mesh data.
     pts: [(i16, i16); 4],
@@ -82,6 +107,9 @@ pub(super) trait CornerSource {
 
 /// Writes into `out` the facet with corners `pts` (of face `face`, found again
 /// through `corners`) at `row`; false when it has no row at or after `row`.
+///
+/// `split`: `pts` is a convex quad, drawn as its triangles `c0 c1 c2` and
+/// `c0 c2 c3`, each with its own plane.
 pub(super) fn facet(
     out: &mut Facet,
     pts: &[FastVertex],
@@ -89,6 +117,7 @@ pub(super) fn facet(
     corners: Corners,
     row: i32,
     s: u32,
+    split: bool,
 ) -> bool {
     let n = pts.len();
     let (mut top, mut bottom, mut ymin, mut ymax) = (0usize, 0usize, i32::MAX, i32::MIN);
@@ -107,24 +136,42 @@ pub(super) fn facet(
     if row >= end || ymin == ymax {
         return false;
     }
-    let (a, b, drow) = plane(pts, row, s);
+    let split = split && n == 4;
+    let ((a, b, drow), (a2, b2, drow2)) = match pts {
+        [p0, p1, p2, p3] if split => (
+            plane(&[*p0, *p1, *p2], row, s),
+            plane(&[*p0, *p2, *p3], row, s),
+        ),
+        _ => {
+            let one = plane(pts, row, s);
+            (one, one)
+        }
+    };
     let first = row_at(2 * ymin, s);
     *out = Facet {
         // Chains are set up on the first row.
         left: EdgeStep::spent(first),
         right: EdgeStep::spent(first),
+        diag: EdgeStep::spent(first),
+        until: first,
         a,
         b,
         drow,
+        a2,
+        b2,
+        drow2,
         id: 0xFFFF - u32::from(face),
-        tie: tie(a, b),
+        tie: tie(a, b).max(tie(a2, b2)),
         end,
         face,
         corners,
         at: [top as u8; 2],
+        top: top as u8,
         bottom: bottom as u8,
         n: n as u8,
         monotone,
+        split,
+        layout: Layout::First,
         pts: {
             let mut q = [(0i16, 0i16); 4];
             for (q, p) in q.iter_mut().zip(pts) {
@@ -139,6 +186,7 @@ pub(super) fn facet(
     if monotone && n <= out.pts.len() && row >= first {
         out.next_edge(&OwnCorners, 0, row, s);
         out.next_edge(&OwnCorners, 1, row, s);
+        out.lay_out(row, s);
     }
     true
 }
@@ -230,24 +278,35 @@ impl Facet {
     pub const EMPTY: Self = Self {
         left: EdgeStep::spent(0),
         right: EdgeStep::spent(0),
+        diag: EdgeStep::spent(0),
+        until: 0,
         a: 0,
         b: 0,
         drow: 0,
+        a2: 0,
+        b2: 0,
+        drow2: 0,
         id: 0,
         tie: 0,
         end: 0,
         face: 0,
         corners: Corners::Face,
         at: [0; 2],
+        top: 0,
         bottom: 0,
         n: 0,
         monotone: true,
+        split: false,
+        layout: Layout::First,
         pts: [(0, 0); 4],
     };
 
     /// The steepest depth change per pixel, in whole depth units (saturating).
     pub fn slope(&self) -> u16 {
-        let most = self.a.unsigned_abs().max(self.b.unsigned_abs()) >> 16;
+        let most = [self.a, self.b, self.a2, self.b2]
+            .iter()
+            .fold(0, |m, v| v.unsigned_abs().max(m))
+            >> 16;
         most.min(u32::from(u16::MAX)) as u16
     }
 
@@ -256,10 +315,48 @@ impl Facet {
         self.face
     }
 
-    /// True when both chains hold row `y`: the row is one span between them.
+    /// True when both chains and the layout hold row `y`: the fast path.
     #[inline(always)]
     pub fn holds(&self, y: i32) -> bool {
-        y < self.left.end && y < self.right.end
+        y < self.until
+    }
+
+    /// The layout of row `y` (the chains set up for it), and the row it holds
+    /// until.
+    fn lay_out(&mut self, y: i32, s: u32) {
+        let mut until = self.left.end.min(self.right.end);
+        if self.split {
+            let [p0, p1, p2, _] = self.pts.map(|(x, y)| (2 * i32::from(x), 2 * i32::from(y)));
+            let (first, end) = (row_at(p0.1.min(p2.1), s), row_at(p0.1.max(p2.1), s));
+            // Beyond the diagonal's rows, the triangle with the corner there.
+            let apex = |corner: u8| {
+                if corner == 1 {
+                    Layout::First
+                } else {
+                    Layout::Second
+                }
+            };
+            if y < first {
+                self.layout = apex(self.top);
+                until = until.min(first);
+            } else if y < end {
+                if !matches!(self.layout, Layout::FirstLeft | Layout::FirstRight) {
+                    self.diag = EdgeStep::new(p0, p2, y, s).unwrap_or(EdgeStep::spent(y));
+                    // Corner 1 left of the diagonal (y down): the first triangle is.
+                    let cross = i64::from(p2.0 - p0.0) * i64::from(p1.1 - p0.1)
+                        - i64::from(p2.1 - p0.1) * i64::from(p1.0 - p0.0);
+                    self.layout = if (cross > 0) == (p2.1 > p0.1) {
+                        Layout::FirstLeft
+                    } else {
+                        Layout::FirstRight
+                    };
+                }
+                until = until.min(end);
+            } else {
+                self.layout = apex(self.bottom);
+            }
+        }
+        self.until = until;
     }
 
     /// The span between the two chains' crossings, then both step a row and the
@@ -267,12 +364,35 @@ impl Facet {
     /// line, so that its loop keeps its few values in registers.
     #[inline(never)]
     pub fn fill_span_row(&mut self, row: &mut DepthRow<'_>) -> u32 {
-        let (x0, x1) = (self.left.pixel(), self.right.pixel());
-        let spans = self.span(x0.min(x1), x0.max(x1), row);
+        let (l, r) = (self.left.pixel(), self.right.pixel());
+        let (x0, x1) = (l.min(r), l.max(r));
+        let one = (self.drow, self.a);
+        let two = (self.drow2, self.a2);
+        let spans = match self.layout {
+            Layout::First => self.span(x0, x1, one, row),
+            Layout::Second => self.span(x0, x1, two, row),
+            split => {
+                let xd = self.diag.pixel().clamp(x0, x1);
+                self.diag.next_row();
+                let (left, right) = if split == Layout::FirstLeft {
+                    (one, two)
+                } else {
+                    (two, one)
+                };
+                self.span(x0, xd, left, row) + self.span(xd, x1, right, row)
+            }
+        };
         self.left.next_row();
         self.right.next_row();
-        self.drow = self.drow.wrapping_add(self.b as u32);
+        self.step_planes();
         spans
+    }
+
+    /// Both planes one row down.
+    #[inline(always)]
+    fn step_planes(&mut self) {
+        self.drow = self.drow.wrapping_add(self.b as u32);
+        self.drow2 = self.drow2.wrapping_add(self.b2 as u32);
     }
 
     /// Row `y` when a chain has run out: moves the chains on (or fills a polygon
@@ -293,15 +413,16 @@ impl Facet {
             if self.right.end <= y {
                 self.next_edge(src, 1, y, s);
             }
+            self.lay_out(y, s);
             if self.holds(y) {
                 return Ok(self.fill_span_row(row));
             }
             // Before the first row (a clipped facet) or after the last: no span.
-            self.drow = self.drow.wrapping_add(self.b as u32);
+            self.step_planes();
             return Ok(0);
         }
         let spans = self.fill_even_odd(src, y, s, row)?;
-        self.drow = self.drow.wrapping_add(self.b as u32);
+        self.step_planes();
         Ok(spans)
     }
 
@@ -376,7 +497,7 @@ impl Facet {
         xs.sort_unstable();
         for pair in xs.chunks_exact(2) {
             if let [x0, x1] = *pair {
-                spans += self.span(x0, x1, row);
+                spans += self.span(x0, x1, (self.drow, self.a), row);
             }
         }
         Ok(spans)
@@ -384,17 +505,17 @@ impl Facet {
 
     /// Depth-tests pixels `x0..x1` of the row.
     #[inline(always)]
-    fn span(&self, x0: i32, x1: i32, row: &mut DepthRow<'_>) -> u32 {
+    fn span(&self, x0: i32, x1: i32, (drow, a): (u32, i32), row: &mut DepthRow<'_>) -> u32 {
         let x0 = x0.max(0);
         let x1 = x1.min(row.cells.len() as i32);
         if x0 >= x1 {
             return 0;
         }
         (row.lo, row.hi) = (row.lo.min(x0), row.hi.max(x1));
-        let d = self.drow.wrapping_add(self.a.wrapping_mul(x0) as u32);
+        let d = drow.wrapping_add(a.wrapping_mul(x0) as u32);
         // x0 < x1 <= row.len(): the range is in bounds.
         if let Some(cells) = row.cells.get_mut(x0 as usize..x1 as usize) {
-            depth_span(cells, d, self.a as u32, self.id, self.tie);
+            depth_span(cells, d, a as u32, self.id, self.tie);
         }
         1
     }

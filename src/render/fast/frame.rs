@@ -379,7 +379,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             pool_used = end;
             let slope = self
                 .facets
-                .push_with(|out| facet(out, &poly, f, corners, y, map.s))?;
+                .push_with(|out| facet(out, &poly, f, corners, y, map.s, false))?;
             set_slope(slopes, f, slope);
             return Ok(pool_used);
         }
@@ -409,19 +409,24 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         slopes: &mut [u16],
     ) -> Result<(), Error> {
         let mut slope = 0;
-        if bent && !folds(pts) {
+        if bent && pts.len() == 4 && convex(pts) {
+            // One facet, split at its diagonal: the same pixels as its fan.
+            slope = self
+                .facets
+                .push_with(|out| facet(out, pts, f, Corners::Face, y, s, true))?;
+        } else if bent && !folds(pts) {
             for k in 1..pts.len().saturating_sub(1) {
                 let tri = [0, k, k + 1].map(|i| pts.get(i).copied().unwrap_or_default());
                 let fan = Corners::Fan(k as u8);
                 let one = self
                     .facets
-                    .push_with(|out| facet(out, &tri, f, fan, y, s))?;
+                    .push_with(|out| facet(out, &tri, f, fan, y, s, false))?;
                 slope = slope.max(one);
             }
         } else {
             slope = self
                 .facets
-                .push_with(|out| facet(out, pts, f, Corners::Face, y, s))?;
+                .push_with(|out| facet(out, pts, f, Corners::Face, y, s, false))?;
         }
         set_slope(slopes, f, slope);
         Ok(())
@@ -516,6 +521,32 @@ fn probe_ids(depth: bool, row: &[u32], ids: &mut [u16]) {
             0
         };
     }
+}
+
+/// Is the polygon `pts` strictly convex on screen: do all its corners turn the
+/// same way, none straight? Then each of its diagonals lies inside it and splits
+/// it into two triangles on either side, and its rows beyond a diagonal's belong
+/// to one of them.
+fn convex(pts: &[FastVertex]) -> bool {
+    let n = pts.len();
+    let (mut pos, mut neg) = (0, 0);
+    for i in 0..n {
+        let at = |k: usize| pts.get(k % n).copied().unwrap_or_default();
+        let (p, q, r) = (at(i), at(i + 1), at(i + 2));
+        let (ax, ay) = (
+            i32::from(q.x) - i32::from(p.x),
+            i32::from(q.y) - i32::from(p.y),
+        );
+        let (bx, by) = (
+            i32::from(r.x) - i32::from(q.x),
+            i32::from(r.y) - i32::from(q.y),
+        );
+        // 16-bit coordinates: the products fit i64 exactly.
+        let cross = i64::from(ax) * i64::from(by) - i64::from(bx) * i64::from(ay);
+        pos += usize::from(cross > 0);
+        neg += usize::from(cross < 0);
+    }
+    pos == n || neg == n
 }
 
 /// Does the fan of `pts` fold over on screen: do its triangles `(p0, pk, pk+1)` not
