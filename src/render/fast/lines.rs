@@ -138,24 +138,55 @@ impl ActiveLine {
         hidden: &mut [u32],
     ) -> bool {
         let sh = s + 1;
-        let (mut k, last) = (i32::from(self.k), i32::from(self.last));
+        let last = i32::from(self.last);
+        if !self.x_major {
+            // One pixel a row: centre k is row k. A clipped line made at row 0 may
+            // start above the frame: walked down to the row first.
+            while i32::from(self.k) < y {
+                if i32::from(self.k) == last {
+                    return false;
+                }
+                self.k += 1;
+                self.d = self.d.wrapping_add(self.dd as u32);
+                self.v.forward();
+            }
+            let k = i32::from(self.k);
+            if k > y {
+                return true;
+            }
+            let (q, d) = (self.v.q, self.d);
+            let cell = row.get((q >> sh) as usize).copied();
+            self.pixel(
+                q >> sh,
+                cell,
+                k,
+                q,
+                d,
+                s,
+                test,
+                slopes,
+                beside,
+                visible,
+                hidden,
+            );
+            if k == last {
+                return false;
+            }
+            self.k += 1;
+            self.d = d.wrapping_add(self.dd as u32);
+            self.v.forward();
+            return true;
+        }
+        let mut k = i32::from(self.k);
         let (mut v, mut d) = (self.v, self.d);
         let more = loop {
-            let m = v.q >> sh;
-            let (px, py) = if self.x_major { (k, m) } else { (m, k) };
+            let py = v.q >> sh;
             if py > y {
                 break true;
             }
-            if let Some(&cell) = row.get(px as usize).filter(|_| py == y) {
-                // Most pixels are in front of the face there: one compare.
-                let hide = test == LineTest::Row
-                    && cell & 0xFFFF_0000 > d.saturating_add(self.bias)
-                    && self.hidden_by(cell, d, k, v.q, s, slopes, beside);
-                let mask = if hide { &mut *hidden } else { &mut *visible };
-                let x = px as usize;
-                if let Some(w) = mask.get_mut(x / 32) {
-                    *w |= 1 << (x % 32);
-                }
+            if py == y {
+                let cell = row.get(k as usize).copied();
+                self.pixel(k, cell, k, v.q, d, s, test, slopes, beside, visible, hidden);
             }
             if k == last {
                 break false;
@@ -170,6 +201,39 @@ impl ActiveLine {
         };
         (self.k, self.v, self.d) = (k as i16, v, d);
         more
+    }
+
+    /// Marks the line's pixel in column `x` (row entry `cell`, `None` outside the
+    /// row) visible or hidden; `k`, `q` and `d` are its centre, minor coordinate and
+    /// depth.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn pixel(
+        &mut self,
+        x: i32,
+        cell: Option<u32>,
+        k: i32,
+        q: i32,
+        d: u32,
+        s: u32,
+        test: LineTest,
+        slopes: &[u16],
+        beside: &impl Fn(u16, &[(i16, i16); 2], (i32, i32)) -> Beside,
+        visible: &mut [u32],
+        hidden: &mut [u32],
+    ) {
+        let Some(cell) = cell else {
+            return;
+        };
+        // Most pixels are in front of the face there: one compare.
+        let hide = test == LineTest::Row
+            && cell & 0xFFFF_0000 > d.saturating_add(self.bias)
+            && self.hidden_by(cell, d, k, q, s, slopes, beside);
+        let mask = if hide { hidden } else { visible };
+        let x = x as usize;
+        if let Some(w) = mask.get_mut(x / 32) {
+            *w |= 1 << (x % 32);
+        }
     }
 
     /// Does the face of row entry `cell` (nearer than the line's depth `d` by more

@@ -220,3 +220,54 @@ fn too_little_lent_storage_or_room_is_an_error_with_the_size_needed() {
     );
     assert_eq!(r.unwrap_err(), Error::SubpixelTooFine { bits: 7, max: 6 });
 }
+
+/// A regression test: a steep line entering the frame from above was drawn with
+/// the pixels of its rows above the frame, one row a pixel, from row 0 down (its
+/// walk started at its first centre, above the frame, one step a row).
+#[test]
+fn a_steep_line_entering_from_above_keeps_its_columns() {
+    // Screen (16 px a unit, origin at the centre): the apex (32, -16) is above the
+    // 64 x 64 frame; the sides run to (40, 48) and (24, 48).
+    let corners = [[0., 3., 0.], [0.5, -1., 0.], [-0.5, -1., 0.]];
+    let mesh = Mesh::new(&corners, &[0, 1, 2], &[0, 3]).unwrap();
+    let b = bake(&mesh);
+    let baked = BakedMesh::new(mesh, &b.planes, &b.edges).unwrap();
+    let mut buffers = Buffers::new(3, 1, b.edges.len(), 64, 64);
+    let mut display = MockDisplay::<BinaryColor>::new();
+    let camera = Camera::new(
+        [0., 0., 4.],
+        [0., 0., 0.],
+        [0., 1., 0.],
+        Projection::Orthographic { half_height: 2.0 },
+        0.1,
+        10.0,
+    )
+    .unwrap();
+    FastRenderer::<U4, 8, 8>::new()
+        .render(
+            &baked,
+            &camera,
+            &settings(DrawMode::Wireframe),
+            &mut buffers.workspace(),
+            &SolidPalette {
+                line: BinaryColor::On,
+                face: None,
+            },
+            &mut FillSolid::new(&mut display).unwrap(),
+            &mut (),
+        )
+        .unwrap();
+    // At the centre of row r the sides are at x = 32 +- (r + 16.5) / 8: each row
+    // has the pixel of each side's crossing (floor), and nothing else.
+    for y in 0..40 {
+        let off = (f64::from(y) + 16.5) / 8.0;
+        let want = [(32.0 - off).floor() as i32, (32.0 + off).floor() as i32];
+        let on: Vec<i32> = (0..64)
+            .filter(|&x| {
+                let p = embedded_graphics::prelude::Point::new(x, y);
+                display.get_pixel(p).is_some()
+            })
+            .collect();
+        assert_eq!(on, want, "row {y}");
+    }
+}
