@@ -241,7 +241,7 @@ impl ActiveLine {
     /// Not when it is one of the line's own faces, not within a share of its own
     /// slope, and not when it only touches the line at an end (tested exactly).
     #[allow(clippy::too_many_arguments)]
-    #[inline(never)]
+    #[inline(always)]
     fn hidden_by(
         &mut self,
         cell: u32,
@@ -258,16 +258,26 @@ impl ActiveLine {
         }
         let face = 0xFFFF - id;
         let slope = u32::from(slopes.get(usize::from(face)).copied().unwrap_or(0));
-        if cell & 0xFFFF_0000
-            <= d.saturating_add(self.bias.saturating_add((SLOPE_MARGIN * slope) << 14))
-        {
+        let margin = self.bias.saturating_add((SLOPE_MARGIN * slope) << 14);
+        if cell & 0xFFFF_0000 <= d.saturating_add(margin) {
             return false;
         }
         // Most hidden pixels are behind a face that does not touch the line's ends:
         // the last face found so is kept.
-        if face == self.apart {
-            return true;
-        }
+        face == self.apart || self.hides_near_ends(face, k, q, s, beside)
+    }
+
+    /// [`hidden_by`](Self::hidden_by) for a face not known to be apart from the
+    /// line's ends: asks `beside`, and keeps the face when it is apart.
+    #[inline(never)]
+    fn hides_near_ends(
+        &mut self,
+        face: u16,
+        k: i32,
+        q: i32,
+        s: u32,
+        beside: &impl Fn(u16, &[(i16, i16); 2], (i32, i32)) -> Beside,
+    ) -> bool {
         let c = (2 * k + 1) << s;
         let e = if self.x_major { (c, q) } else { (q, c) };
         match beside(face, &self.ends, e) {
