@@ -43,8 +43,11 @@ for pc, c in counts.items():
     by_fn[name(pc)] += w
     total += w
 print('total', total)
+def short(fn):
+    # typenum's sub-pixel parameter spelled out buries the method name.
+    return re.sub(r'typenum::uint::UInt<[^ ]*(, typenum::bit::B[01]>)+', 'U', fn)
 for fn, w in by_fn.most_common(40):
-    print(f'{w:12d} {100*w/total:5.1f}% {fn[:150]}')
+    print(f'{w:12d} {100*w/total:5.1f}% {short(fn)[:150]}')
 # top PCs with inlined frames
 import os
 top = sorted(((c * tb_size.get(pc, 1), pc) for pc, c in counts.items()), reverse=True)
