@@ -343,7 +343,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         map: &ScreenMap,
         vertices: &[FastVertex],
         pool: &mut [FastVertex],
-        mut pool_used: usize,
+        pool_used: usize,
         slopes: &mut [u16],
         f: u16,
         y: i32,
@@ -355,33 +355,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             .iter()
             .any(|&v| vertices.get(v as usize).is_none_or(|p| !p.inside()));
         if clipped {
-            let mut poly = ClipPolygon::new();
-            let positions = mesh.vertices();
-            let points = corners
-                .iter()
-                .map(|&v| positions.get(v as usize).copied().unwrap_or_default());
-            if !clip_polygon(map, points, &mut poly)? {
-                return Ok(pool_used);
-            }
-            let end = pool_used + poly.len();
-            // Pool positions are 16-bit in a facet: a larger pool is used up to there.
-            let room = pool.len().min(usize::from(u16::MAX));
-            let Some(slots) = pool.get_mut(pool_used..end).filter(|_| end <= room) else {
-                return Err(Error::CapacityExceeded {
-                    needed: end,
-                    capacity: room,
-                });
-            };
-            slots.copy_from_slice(&poly);
-            let corners = Corners::Pool {
-                start: pool_used as u16,
-            };
-            pool_used = end;
-            let slope = self
-                .facets
-                .push_with(|out| facet(out, &poly, f, corners, y, map.s, false))?;
-            set_slope(slopes, f, slope);
-            return Ok(pool_used);
+            return self.activate_clipped(baked, map, pool, pool_used, slopes, f, y);
         }
         let mut poly: Vec<FastVertex, MAX_CORNERS> = Vec::new();
         for &v in corners {
@@ -394,6 +368,51 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         let bent = mesh.kept_planarity(usize::from(f)) == Some(false);
         self.push_facets(&poly, bent, f, y, map.s, slopes)?;
         Ok(pool_used)
+    }
+
+    /// [`activate_other`](Self::activate_other) for a face with a corner outside:
+    /// clipped into the pool. Apart, so that its clip buffers are not on the stack
+    /// of every face of more than four corners.
+    #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
+    fn activate_clipped(
+        &mut self,
+        baked: &BakedMesh<'_>,
+        map: &ScreenMap,
+        pool: &mut [FastVertex],
+        pool_used: usize,
+        slopes: &mut [u16],
+        f: u16,
+        y: i32,
+    ) -> Result<usize, Error> {
+        let mesh = baked.mesh();
+        let mut poly = ClipPolygon::new();
+        let positions = mesh.vertices();
+        let points = mesh
+            .face(usize::from(f))
+            .iter()
+            .map(|&v| positions.get(v as usize).copied().unwrap_or_default());
+        if !clip_polygon(map, points, &mut poly)? {
+            return Ok(pool_used);
+        }
+        let end = pool_used + poly.len();
+        // Pool positions are 16-bit in a facet: a larger pool is used up to there.
+        let room = pool.len().min(usize::from(u16::MAX));
+        let Some(slots) = pool.get_mut(pool_used..end).filter(|_| end <= room) else {
+            return Err(Error::CapacityExceeded {
+                needed: end,
+                capacity: room,
+            });
+        };
+        slots.copy_from_slice(&poly);
+        let corners = Corners::Pool {
+            start: pool_used as u16,
+        };
+        let slope = self
+            .facets
+            .push_with(|out| facet(out, &poly, f, corners, y, map.s, false))?;
+        set_slope(slopes, f, slope);
+        Ok(end)
     }
 
     /// The facets of face `f` with (unclipped) corners `pts` at row `y`: its fan
