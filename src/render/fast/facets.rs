@@ -1,12 +1,15 @@
-//! Active facets: the faces (or, for a bent face, its fan triangles) that cross
-//! the current row, each with its depth plane, and the row they fill.
+//! Active facets: the faces (a bent convex quad split at its diagonal, or the fan
+//! triangles of another bent face) that cross the current row, each with its depth
+//! plane(s), and the row they fill.
 //!
 //! A facet whose corners fall monotonically in y from one top corner to one bottom
 //! corner (every triangle, every convex polygon) keeps two edge steppers, one per
-//! chain: each row is one span between their crossings. Any other polygon is
-//! filled by the even-odd rule from all its edges' crossings, made afresh each row
-//! (rare: concave faces). The row is `u32`s, `depth << 16 | (0xFFFF - face)`, so
-//! one unsigned compare takes the nearer face, and at equal depth the lower index.
+//! chain: each row is one span between their crossings (for a split quad, two, at
+//! the diagonal's crossing). Any other polygon is filled by the even-odd rule from
+//! all its edges' crossings, made afresh each row (rare: concave faces). The row is
+//! `u32`s, `depth << 16 | (0xFFFF - face)`, and the facets come in face order, so
+//! one unsigned compare a pixel takes the nearer face, and within the tie the lower
+//! index.
 
 use heapless::Vec;
 

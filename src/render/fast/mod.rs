@@ -5,12 +5,14 @@
 //! transform of each vertex into an 8-byte cache entry (16-bit screen x, y with S
 //! sub-pixel bits, and a depth scaled to the depth range the frame draws); facing
 //! bits; faces and feature lines linked into per-row lists. Per row: each active
-//! facet (a face, or a fan triangle of a bent face) fills its span into one row of
-//! `u32`s, `depth << 16 | (0xFFFF - face)`, with one unsigned compare a pixel; then
-//! each active feature line's pixels in the row are tested against the finished
-//! row; then the row goes out as spans. Integer work per pixel and per row, edges
-//! stepped exactly in 32 bits, no 64-bit division anywhere in a frame. Working
-//! memory grows with one row and the active facets and lines, not with the frame.
+//! facet (a face; a bent convex quad split at its diagonal, one plane a side; or a
+//! fan triangle of another bent face), in the order of its face index, fills its
+//! span into one row of `u32`s, `depth << 16 | (0xFFFF - face)`, with one
+//! unsigned compare a pixel; then each active feature line's pixels in the row are
+//! tested against the finished row; then the row goes out as spans. Integer work
+//! per pixel and per row, edges stepped in 16.16 fixed point, no 64-bit division
+//! anywhere in a frame. Working memory grows with one row and the active facets
+//! and lines, not with the frame.
 //!
 //! # What it bends (`CONVENTIONS.md`, "Approximate engines")
 //! It keeps the fill rule (pixel centres, top-left, even-odd, watertight shared
@@ -18,7 +20,13 @@
 //! It bends, measured against the f64 reference in `BENCHMARKS.md`:
 //! - **Depth is 16 bits** in the row (of the frame's own nearness range), and a
 //!   face's depth is one plane in 16.16 fixed point set up in `f32`: faces closer
-//!   than a depth unit, or crossing, may swap over a few pixels.
+//!   than a depth unit, or crossing, may swap over a few pixels. A facet drawn
+//!   after one of lower face index takes a pixel only when nearer by its tie (one
+//!   depth unit plus a sixteenth of its depth change a pixel, at most 128 units).
+//! - **Edge crossings in 16.16**: an edge's crossing of each row is stepped from
+//!   its top end with a slope rounded to `2^-16` px (set up in `f32`), within about
+//!   `2^-11` px of the exact crossing; every face that shares the edge steps the
+//!   same integers, so fills stay watertight.
 //! - **A line pixel is tested at its pixel centre** against the face nearest
 //!   there, not at the edge point; the edge's own two faces never hide it, and
 //!   another face hides it only when nearer by more than one pixel of the line's
@@ -26,7 +34,8 @@
 //!   A non-manifold edge's third and later faces are not its own here.
 //! - **A bent face** (not planar, [`Mesh::with_planar_faces`]) is drawn as its fan
 //!   triangles, each with its own plane (their union is the polygon's even-odd
-//!   coverage when they all turn the same way on screen). A bent face whose fan
+//!   coverage when they all turn the same way on screen; a convex quad's two are
+//!   one facet split at its diagonal, the same pixels). A bent face whose fan
 //!   folds over on screen, or that is clipped, is drawn as its polygon with the
 //!   plane of its largest fan triangle. Faces of unknown planarity are taken as
 //!   planar.

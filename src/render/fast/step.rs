@@ -1,6 +1,7 @@
-//! Exact 32-bit steppers: an edge's crossing of each row, and a line's minor
-//! coordinate at each pixel centre of its major axis, as a floor quotient and a
-//! remainder (the scheme of `scan::edge`), set up with 32-bit divisions only.
+//! Steppers: a line's minor coordinate at each pixel centre of its major axis,
+//! exactly, as a floor quotient and a remainder (the scheme of `scan::edge`) set
+//! up with 32-bit divisions only; and a polygon edge's crossing of each row in
+//! 16.16 px, set up in `f32` (see [`EdgeStep`]).
 //!
 //! Units are half sub-pixels, `2^-(S+1)` px, where pixel centres are the odd
 //! multiples of `h = 2^S`; one pixel is `p = 2h`. Inside the guard box
