@@ -5,7 +5,7 @@
 
 use heapless::Vec;
 
-use super::facets::{CornerSource, DepthRow, Facet};
+use super::facets::{CornerSource, Facet};
 use crate::Error;
 
 /// Room for `N` active facets: their slots, the active ones' `face << 16 | slot`
@@ -81,7 +81,7 @@ impl<const N: usize> ActiveFacets<N> {
         src: &C,
         y: i32,
         s: u32,
-        row: &mut DepthRow<'_>,
+        row: &mut [u32],
     ) -> Result<u32, Error> {
         let (mut spans, mut kept) = (0, 0);
         let Self {

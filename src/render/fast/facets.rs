@@ -60,7 +60,7 @@ enum Layout {
     FirstRight,
 }
 
-/// One facet crossing the current row, 104 bytes: a face, or one fan triangle of
+/// One facet crossing the current row, 100 bytes: a face, or one fan triangle of
 /// a bent face, or a bent convex quad split at its diagonal `c0 c2` into two
 /// triangles with a plane each (so that a bent quad is one facet, not two).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -82,8 +82,6 @@ pub(super) struct Facet {
     a2: i32,
     b2: i32,
     drow2: u32,
-    /// `0xFFFF - face`: the low half of the row entries it writes.
-    id: u32,
     /// Depths this close to the nearest so far are a tie (16.16).
     tie: u32,
     /// The row after its last.
@@ -163,7 +161,6 @@ pub(super) fn facet(
         a2,
         b2,
         drow2,
-        id: 0xFFFF - u32::from(face),
         tie: tie(a, b).max(tie(a2, b2)),
         end,
         face,
@@ -289,7 +286,6 @@ impl Facet {
         a2: 0,
         b2: 0,
         drow2: 0,
-        id: 0,
         tie: 0,
         end: 0,
         face: 0,
@@ -366,7 +362,7 @@ impl Facet {
     /// depth a row: the row loop's fast path, when [`holds`](Self::holds). Out of
     /// line, so that its loop keeps its few values in registers.
     #[inline(never)]
-    pub fn fill_span_row(&mut self, row: &mut DepthRow<'_>) -> u32 {
+    pub fn fill_span_row(&mut self, row: &mut [u32]) -> u32 {
         let (l, r) = (self.left.pixel(), self.right.pixel());
         let (x0, x1) = (l.min(r), l.max(r));
         let one = (self.drow, self.a);
@@ -407,7 +403,7 @@ impl Facet {
         src: &C,
         y: i32,
         s: u32,
-        row: &mut DepthRow<'_>,
+        row: &mut [u32],
     ) -> Result<u32, Error> {
         if self.monotone {
             if self.left.end <= y {
@@ -482,7 +478,7 @@ impl Facet {
         src: &C,
         y: i32,
         s: u32,
-        row: &mut DepthRow<'_>,
+        row: &mut [u32],
     ) -> Result<u32, Error> {
         let mut spans = 0;
         let mut xs: Vec<i32, MAX_CORNERS> = Vec::new();
@@ -508,16 +504,17 @@ impl Facet {
 
     /// Depth-tests pixels `x0..x1` of the row.
     #[inline(always)]
-    fn span(&self, x0: i32, x1: i32, (drow, a): (u32, i32), row: &mut DepthRow<'_>) -> u32 {
+    fn span(&self, x0: i32, x1: i32, (drow, a): (u32, i32), row: &mut [u32]) -> u32 {
         let x0 = x0.max(0);
-        let x1 = x1.min(row.cells.len() as i32);
+        let x1 = x1.min(row.len() as i32);
         if x0 >= x1 {
             return 0;
         }
         let d = drow.wrapping_add(a.wrapping_mul(x0) as u32);
         // x0 < x1 <= row.len(): the range is in bounds.
-        if let Some(cells) = row.cells.get_mut(x0 as usize..x1 as usize) {
-            depth_span(cells, d, a as u32, self.id, self.tie);
+        if let Some(cells) = row.get_mut(x0 as usize..x1 as usize) {
+            let id = 0xFFFF - u32::from(self.face);
+            depth_span(cells, d, a as u32, id, self.tie);
         }
         1
     }
@@ -540,30 +537,15 @@ fn depth_span(cells: &mut [u32], d: u32, a: u32, id: u32, tie: u32) {
     }
 }
 
-/// One row of nearest-face entries, `depth << 16 | (0xFFFF - face)` (0: none).
-#[derive(Debug)]
-pub(super) struct DepthRow<'a> {
-    pub cells: &'a mut [u32],
-}
-
-impl<'a> DepthRow<'a> {
-    /// The row over `cells`, all cleared.
-    pub fn new(cells: &'a mut [u32]) -> Self {
-        let mut row = Self { cells };
-        row.clear();
-        row
+/// Clears a row of nearest-face entries (0: none), eight words a store run (the
+/// library's `memset` is slower on the Cortex-M4).
+pub(super) fn clear_row(row: &mut [u32]) {
+    let mut chunks = row.chunks_exact_mut(8);
+    for chunk in &mut chunks {
+        chunk.copy_from_slice(&[0; 8]);
     }
-
-    /// Clears the row, eight words a store run (the library's `memset` is slower
-    /// on the Cortex-M4).
-    pub fn clear(&mut self) {
-        let mut chunks = self.cells.chunks_exact_mut(8);
-        for chunk in &mut chunks {
-            chunk.copy_from_slice(&[0; 8]);
-        }
-        for cell in chunks.into_remainder() {
-            *cell = 0;
-        }
+    for cell in chunks.into_remainder() {
+        *cell = 0;
     }
 }
 

@@ -61,7 +61,8 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             ..
         } = ws;
         let (face_heads, line_heads) = heads.split_at(height);
-        let mut row = DepthRow::new(row.get_mut(..width).unwrap_or_default());
+        let row = row.get_mut(..width).unwrap_or_default();
+        clear_row(row);
         let words = width.div_ceil(32);
         let masks = masks.get_mut(..2 * words).unwrap_or_default();
         let mut pool_used = 0usize;
@@ -83,7 +84,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                     f = face_links.get(usize::from(f)).copied().unwrap_or(NONE);
                 }
                 stats.peak_faces = stats.peak_faces.max(self.facets.len() as u32);
-                row.clear();
+                clear_row(row);
                 let src = Source {
                     mesh,
                     cache: vertices,
@@ -91,7 +92,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                 };
                 stats.spans += self
                     .facets
-                    .fill_row(&src, yi, s, &mut row)
+                    .fill_row(&src, yi, s, row)
                     .map_err(Error::widen)?;
             }
             masks.fill(0);
@@ -123,7 +124,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                 };
                 let mut i = 0;
                 while let Some(line) = self.lines.get_mut(i) {
-                    if line.row(yi, s, test, row.cells, slopes, &beside, visible, hidden) {
+                    if line.row(yi, s, test, row, slopes, &beside, visible, hidden) {
                         i += 1;
                     } else {
                         self.lines.swap_remove(i);
@@ -132,13 +133,13 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             }
             let (visible, hidden) = masks.split_at_mut(words);
             if R::ACTIVE {
-                probe_ids(depth, row.cells, ids);
+                probe_ids(depth, row, ids);
                 probe.row(y as u16, ids.get(..width).unwrap_or(&[]), visible, hidden);
             }
             stats.spans += emit_row(
                 y as u16,
                 settings,
-                row.cells,
+                row,
                 visible,
                 hidden,
                 palette,
@@ -551,21 +552,26 @@ fn convex(pts: &[FastVertex]) -> bool {
     let (mut pos, mut neg) = (0, 0);
     for i in 0..n {
         let at = |k: usize| pts.get(k % n).copied().unwrap_or_default();
-        let (p, q, r) = (at(i), at(i + 1), at(i + 2));
-        let (ax, ay) = (
-            i32::from(q.x) - i32::from(p.x),
-            i32::from(q.y) - i32::from(p.y),
-        );
-        let (bx, by) = (
-            i32::from(r.x) - i32::from(q.x),
-            i32::from(r.y) - i32::from(q.y),
-        );
-        // 16-bit coordinates: the products fit i64 exactly.
-        let cross = i64::from(ax) * i64::from(by) - i64::from(bx) * i64::from(ay);
+        let cross = turn(at(i), at(i + 1), at(i + 2));
         pos += usize::from(cross > 0);
         neg += usize::from(cross < 0);
     }
     pos == n || neg == n
+}
+
+/// The cross product `(p - o) x (q - o)` of screen points: positive when `o, p, q`
+/// turn one way, negative the other, 0 on a line. 16-bit coordinates: the products
+/// fit `i64` exactly.
+fn turn(o: FastVertex, p: FastVertex, q: FastVertex) -> i64 {
+    let (ax, ay) = (
+        i32::from(p.x) - i32::from(o.x),
+        i32::from(p.y) - i32::from(o.y),
+    );
+    let (bx, by) = (
+        i32::from(q.x) - i32::from(o.x),
+        i32::from(q.y) - i32::from(o.y),
+    );
+    i64::from(ax) * i64::from(by) - i64::from(bx) * i64::from(ay)
 }
 
 /// Does the fan of `pts` fold over on screen: do its triangles `(p0, pk, pk+1)` not
@@ -578,16 +584,7 @@ fn folds(pts: &[FastVertex]) -> bool {
     let (mut pos, mut neg) = (false, false);
     for w in pts.get(1..).unwrap_or(&[]).windows(2) {
         if let [p, q] = *w {
-            let (ax, ay) = (
-                i32::from(p.x) - i32::from(p0.x),
-                i32::from(p.y) - i32::from(p0.y),
-            );
-            let (bx, by) = (
-                i32::from(q.x) - i32::from(p0.x),
-                i32::from(q.y) - i32::from(p0.y),
-            );
-            // 16-bit coordinates: the products fit i64 exactly.
-            let cross = i64::from(ax) * i64::from(by) - i64::from(bx) * i64::from(ay);
+            let cross = turn(p0, p, q);
             pos |= cross > 0;
             neg |= cross < 0;
         }

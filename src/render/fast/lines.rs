@@ -146,19 +146,16 @@ impl ActiveLine {
                 if i32::from(self.k) == last {
                     return false;
                 }
-                self.k += 1;
-                self.d = self.d.wrapping_add(self.dd as u32);
-                self.v.forward();
+                self.next_row();
             }
             let k = i32::from(self.k);
             if k > y {
                 return true;
             }
             let (q, d) = (self.v.q, self.d);
-            let cell = row.get((q >> sh) as usize).copied();
             self.pixel(
                 q >> sh,
-                cell,
+                row,
                 k,
                 q,
                 d,
@@ -172,9 +169,7 @@ impl ActiveLine {
             if k == last {
                 return false;
             }
-            self.k += 1;
-            self.d = d.wrapping_add(self.dd as u32);
-            self.v.forward();
+            self.next_row();
             return true;
         }
         let mut k = i32::from(self.k);
@@ -185,8 +180,7 @@ impl ActiveLine {
                 break true;
             }
             if py == y {
-                let cell = row.get(k as usize).copied();
-                self.pixel(k, cell, k, v.q, d, s, test, slopes, beside, visible, hidden);
+                self.pixel(k, row, k, v.q, d, s, test, slopes, beside, visible, hidden);
             }
             if k == last {
                 break false;
@@ -203,15 +197,22 @@ impl ActiveLine {
         more
     }
 
-    /// Marks the line's pixel in column `x` (row entry `cell`, `None` outside the
-    /// row) visible or hidden; `k`, `q` and `d` are its centre, minor coordinate and
-    /// depth.
+    /// A steep line one centre (one row) on.
+    #[inline(always)]
+    fn next_row(&mut self) {
+        self.k += 1;
+        self.d = self.d.wrapping_add(self.dd as u32);
+        self.v.forward();
+    }
+
+    /// Marks the line's pixel in column `x` of `row` (none outside it) visible or
+    /// hidden; `k`, `q` and `d` are its centre, minor coordinate and depth.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn pixel(
         &mut self,
         x: i32,
-        cell: Option<u32>,
+        row: &[u32],
         k: i32,
         q: i32,
         d: u32,
@@ -222,7 +223,7 @@ impl ActiveLine {
         visible: &mut [u32],
         hidden: &mut [u32],
     ) {
-        let Some(cell) = cell else {
+        let Some(&cell) = row.get(x as usize) else {
             return;
         };
         // Most pixels are in front of the face there: one compare.

@@ -70,7 +70,7 @@ use crate::mesh::{bit, set_bit, EdgeKind, Viewpoint};
 use crate::{Error, SpanSink, Viewport};
 use active::ActiveFacets;
 use clip::{clip_polygon, clip_segment};
-use facets::{facet, ClipPolygon, CornerSource, Corners, DepthRow, Facet};
+use facets::{clear_row, facet, ClipPolygon, CornerSource, Corners, Facet};
 use lines::{ActiveLine, Beside, LineTest};
 use row_out::{emit_row, Shades};
 use view::{guard_px, ScreenMap};

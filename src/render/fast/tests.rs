@@ -77,11 +77,17 @@ impl Buffers {
 }
 
 fn camera() -> Camera {
+    looking_down_z(1.5)
+}
+
+/// An orthographic camera on the z axis, 4 units out, seeing `half_height` above
+/// and below the origin.
+fn looking_down_z(half_height: f32) -> Camera {
     Camera::new(
         [0., 0., 4.],
         [0., 0., 0.],
         [0., 1., 0.],
-        Projection::Orthographic { half_height: 1.5 },
+        Projection::Orthographic { half_height },
         0.1,
         10.0,
     )
@@ -108,15 +114,7 @@ fn two_triangles_fill_their_square_once_with_no_gap_on_the_diagonal() {
         line: BinaryColor::On,
         face: Some(BinaryColor::On),
     };
-    let camera = Camera::new(
-        [0., 0., 4.],
-        [0., 0., 0.],
-        [0., 1., 0.],
-        Projection::Orthographic { half_height: 2.0 },
-        0.1,
-        10.0,
-    )
-    .unwrap();
+    let camera = looking_down_z(2.0);
     let stats = FastRenderer::<U4, 8, 8>::new()
         .render(
             &baked,
@@ -234,15 +232,7 @@ fn a_steep_line_entering_from_above_keeps_its_columns() {
     let baked = BakedMesh::new(mesh, &b.planes, &b.edges).unwrap();
     let mut buffers = Buffers::new(3, 1, b.edges.len(), 64, 64);
     let mut display = MockDisplay::<BinaryColor>::new();
-    let camera = Camera::new(
-        [0., 0., 4.],
-        [0., 0., 0.],
-        [0., 1., 0.],
-        Projection::Orthographic { half_height: 2.0 },
-        0.1,
-        10.0,
-    )
-    .unwrap();
+    let camera = looking_down_z(2.0);
     FastRenderer::<U4, 8, 8>::new()
         .render(
             &baked,
