@@ -17,17 +17,20 @@
 //!   margin, `1/16` of a face's nearness change per pixel: that survives snapping
 //!   only when a plane moves by less than `1/16` px, so they need `S >= 4`.
 //! * **Depth bits** (the Z-buffer engine only; the code-fill engine compares planes
-//!   at full precision). Depth is nearness `q = near / d` (perspective) or
-//!   `q = (far - d) / (far - near)` (orthographic), stored in `B` bits: one step is
+//!   at full precision). Depth is nearness scaled to the distances the frame draws,
+//!   `lo..hi` (the nearest and farthest drawn distance, within near..far; see
+//!   `Stats::depth_step_near`): `q = lo (hi - d) / ((hi - lo) d)` (perspective) or
+//!   `q = (hi - d) / (hi - lo)` (orthographic), stored in `B` bits: one step is
 //!   `2^-(B-1)` (`q = 1` is `2^31`; a 16-bit sample keeps the top 16 bits). Two
-//!   surfaces `g` apart differ in nearness by at least `near g / far^2` (at the far
-//!   plane, the worst place) or `g / (far - near)`. They are ordered when that
-//!   exceeds two steps (one for the truncation of each); for 32 bits the step is
-//!   taken as `2^-27`, covering the depth test's tie margin of 8 units of `2^-31` and
-//!   the projection's rounding. Overlapping coplanar faces need 32 bits: they tie
-//!   within the test's margin (8 units of `2^-31` plus `1/16` of a plane's change
-//!   per pixel), which a 16-bit sample's truncation breaks. The relative depth error of one sample is
-//!   `2^-(B-1) d / near` (perspective): at the far plane `2^-(B-1) far / near`.
+//!   surfaces `g` apart differ in nearness by at least `lo g / ((hi - lo) hi)` (at
+//!   the farthest drawn distance, the worst place) or `g / (hi - lo)`. They are
+//!   ordered when that exceeds two steps (one for the truncation of each); for 32
+//!   bits the step is taken as `2^-27`, covering the depth test's tie margin of 8
+//!   units of `2^-31` and the projection's rounding. Overlapping coplanar faces need
+//!   32 bits: they tie within the test's margin (8 units of `2^-31` plus `1/16` of a
+//!   plane's change per pixel), which a 16-bit sample's truncation breaks.
+//!   [`Recommendation::separable_gap_16`] and `_32` say how close two surfaces at the
+//!   farthest drawn distance may be for each width to tell them apart.
 //! * **Code width** (the code-fill engine): the surface code has one bit per face
 //!   covering a pixel, plus one while a crossing hands a pixel from one face to its
 //!   neighbour, so `ceil((max_layers + 1) / 32)` words. (Measured: the crossing
@@ -58,7 +61,9 @@ pub struct SceneBounds {
     /// Radius of the part of the scene the view frames (the bounding sphere the
     /// camera is fitted to): `radius` world units span about half the screen.
     pub radius: f32,
-    /// The camera's near and far distances, `0 < near < far`.
+    /// The nearest and farthest distances the frame draws, `0 < near < far`: the
+    /// camera's near and far at most, or tighter, the distances of the drawn
+    /// geometry along the view clamped to them (depth is scaled to those).
     pub near: f32,
     /// See `near`.
     pub far: f32,
@@ -147,6 +152,12 @@ pub struct Recommendation {
     /// The smallest nearness difference between two surfaces `min_depth_gap` apart,
     /// in units of `2^-31` (the depth test needs it above two steps of the samples).
     pub min_gap_q31: f32,
+    /// The smallest gap between two surfaces at the farthest drawn distance that
+    /// 16-bit depth tells apart (world units); closer surfaces may tie, and the
+    /// lower face index shows.
+    pub separable_gap_16: f32,
+    /// The same for 32-bit depth.
+    pub separable_gap_32: f32,
     /// 32-bit words of the code-fill engine's surface code (its `WORDS` parameter).
     pub code_words: u32,
     /// Every part of the bound can be met: the floor is below `edge_px` and 32-bit
@@ -198,13 +209,23 @@ pub fn recommend(scene: &SceneBounds, viewport: Viewport, bound: &ErrorBound) ->
         snap /= 2.0;
     }
     let edge_ok = valid && fits(snap);
-    // The smallest nearness difference between surfaces min_depth_gap apart.
-    let gap = if !valid {
+    // Nearness per world unit at the farthest drawn distance: depth is scaled to
+    // near..far (the distances drawn).
+    let per_unit = if !valid {
         0.0
     } else if scene.orthographic {
-        scene.min_depth_gap / (scene.far - scene.near)
+        1.0 / (scene.far - scene.near)
     } else {
-        scene.near * scene.min_depth_gap / (scene.far * scene.far)
+        scene.near / ((scene.far - scene.near) * scene.far)
+    };
+    // The smallest nearness difference between surfaces min_depth_gap apart.
+    let gap = scene.min_depth_gap * per_unit;
+    let separable = |need: f32| {
+        if per_unit > 0.0 {
+            need / per_unit
+        } else {
+            f32::INFINITY
+        }
     };
     // Coplanar faces tie within 8 units of 2^-31 plus 1/16 of a plane's change per
     // pixel; a 16-bit sample's truncation (2^16 units) breaks such ties.
@@ -217,6 +238,8 @@ pub fn recommend(scene: &SceneBounds, viewport: Viewport, bound: &ErrorBound) ->
         floor_px,
         depth_bits,
         min_gap_q31: gap / Q31,
+        separable_gap_16: separable(NEED_16),
+        separable_gap_32: separable(NEED_32),
         code_words: layers.div_ceil(32),
         meets_bound: edge_ok && depth_ok,
     }
@@ -254,6 +277,21 @@ mod tests {
             !r.meets_bound,
             "1e-3 at 1000 with near 0.1 is below 32 bits"
         );
+    }
+
+    /// Issue 24, item 3: surfaces 1e-4 apart around 100 (drawn distances 99.99 to
+    /// 100.01, whatever the camera's near) are told apart by 16-bit depth; drawn
+    /// from 0.1 to 1000 they are not, and 32 bits say so too.
+    #[test]
+    fn depth_bits_follow_the_drawn_distances() {
+        let b = ErrorBound::default();
+        let close = SceneBounds::perspective(100.0, 20.0, 99.99, 100.01).with_min_depth_gap(1e-4);
+        let r = recommend(&close, VP, &b);
+        assert_eq!(r.depth_bits, 16);
+        assert!(r.meets_bound && r.separable_gap_16 <= 1e-4, "{r:?}");
+        let deep = SceneBounds::perspective(100.0, 20.0, 0.1, 1000.0).with_min_depth_gap(1e-4);
+        let r = recommend(&deep, VP, &b);
+        assert!(!r.meets_bound && r.separable_gap_32 > 1e-4, "{r:?}");
     }
 
     #[test]

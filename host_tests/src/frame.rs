@@ -192,6 +192,9 @@ pub struct Frame {
     pub packed: Vec<u8>,
     /// Figures: faces, faces_drawn, feature_edges, spans, working_ram_bytes, ...
     pub stats: Vec<(String, u64)>,
+    /// The world distance one depth step stands for at the nearest and farthest
+    /// drawn distance (`depth_step_near`, `depth_step_far`); 0 where not reported.
+    pub depth_step: [f64; 2],
 }
 
 impl Frame {

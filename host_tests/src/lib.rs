@@ -14,6 +14,7 @@ pub mod metrics;
 pub mod newell;
 pub mod obj;
 pub mod orbit;
+pub mod origin;
 pub mod pick;
 pub mod pipeline;
 pub mod random;

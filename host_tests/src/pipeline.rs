@@ -240,6 +240,16 @@ pub fn settings(spec: &RenderSpec) -> Result<Settings, String> {
 
 /// Renders with the library exactly as firmware would (fixed point, banded).
 pub fn render_frame(mesh: &MeshData, cam: &CameraSpec, spec: &RenderSpec) -> Result<Frame, String> {
+    // Far from the origin, or with huge faces: moved to a local origin and cut in
+    // f64 first (the same picture).
+    let aspect = spec.width as f64 / spec.height.max(1) as f64;
+    if let Some((mesh, cam)) = crate::origin::localised(mesh, cam, aspect) {
+        return render_local(&mesh, &cam, spec);
+    }
+    render_local(mesh, cam, spec)
+}
+
+fn render_local(mesh: &MeshData, cam: &CameraSpec, spec: &RenderSpec) -> Result<Frame, String> {
     match spec.subpixel {
         0 => render_s::<U0>(mesh, cam, spec),
         1 => render_s::<U1>(mesh, cam, spec),
@@ -367,6 +377,7 @@ pub(crate) fn frame(
             ("adjacency_build_bytes".into(), build_bytes as u64),
             ("time_us".into(), time_us),
         ],
+        depth_step: [stats.depth_step_near, stats.depth_step_far].map(f64::from),
     }
 }
 

@@ -26,17 +26,27 @@ use std::time::Instant;
 use fixed::types::extra::{LeEqU32, U0, U12, U4};
 use fuzzgen::{finite, panic_message, raw_camera, raw_mesh, wild, RawCamera, RawMesh, Recorder};
 use host_tests::bsp::BspBuffers;
+use host_tests::fast::FastBuffers;
 use host_tests::random::Rng;
 use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
 use pbuffer::order::BspSizes;
-use pbuffer::render::{storage_rows, Depth, ProjectedVertex, RowCodes};
+use pbuffer::render::{
+    storage_rows, BakedMesh, CompactEdge, Depth, FacePlane, FastRenderer, ProjectedVertex, RowCodes,
+};
 use pbuffer::{
     Camera, CodeFillRenderer, CodeWorkspace, Cull, DepthOrder, DrawMode, Error, MonoPalette,
     Pattern, Settings, Stats, Visibility, Workspace, ZBufferRenderer,
 };
 
-/// Mesh + camera cases of the render property.
+/// Mesh + camera cases of the render property; `PBUFFER_FUZZ_SCENES` asks for
+/// more (`scripts/fuzz-million` runs 10^6) and `PBUFFER_FUZZ_SEED` for other ones.
 const RENDER_CASES: usize = 30_000;
+
+fn render_cases() -> (usize, u64) {
+    let var = |k: &str| std::env::var(k).ok().and_then(|v| v.parse::<u64>().ok());
+    let cases = var("PBUFFER_FUZZ_SCENES").map_or(RENDER_CASES, |n| n as usize);
+    (cases, var("PBUFFER_FUZZ_SEED").unwrap_or(0xF022_0000_0002))
+}
 /// Mesh + camera cases of the error property.
 const ERROR_CASES: usize = 200_000;
 
@@ -49,6 +59,8 @@ enum Engine {
     Ordered,
     Z16,
     Z32,
+    /// The fast engine (the default), its mesh baked for the case.
+    Fast,
 }
 
 /// What one frame needs besides mesh and camera.
@@ -180,7 +192,32 @@ fn render_s<F: LeEqU32>(job: &Job, engine: Engine, sink: &mut Recorder) -> Resul
         Engine::Ordered => render_ordered::<F>(job, sink),
         Engine::Z16 => render_z::<F, u16>(job, sink),
         Engine::Z32 => render_z::<F, u32>(job, sink),
+        Engine::Fast => render_fast::<F>(job, sink),
     }
+}
+
+/// The fast engine with room for 64 active facets and 64 lines (more is
+/// `CapacityExceeded`), a clip pool for every face cut by six planes.
+fn render_fast<F: LeEqU32>(job: &Job, sink: &mut Recorder) -> Result<Stats, Error> {
+    let mesh = job.mesh;
+    let mut planes = vec![FacePlane::default(); mesh.face_count()];
+    let mut edges = vec![CompactEdge::default(); job.edges.edges().len()];
+    BakedMesh::bake(mesh, job.edges, &mut planes, &mut edges)?;
+    let baked = BakedMesh::new(*mesh, &planes, &edges)?;
+    let n = mesh.vertices().len() - usize::from(job.short);
+    let pool = mesh.indices().len() + 6 * mesh.face_count();
+    let (w, h) = (usize::from(job.w), usize::from(job.h));
+    let mut buffers = FastBuffers::new(n, mesh.face_count(), edges.len(), w, h, pool);
+    let mut engine = Box::new(FastRenderer::<F, 64, 64>::new());
+    engine.render(
+        &baked,
+        job.camera,
+        &job.settings,
+        &mut buffers.workspace(),
+        &MonoPalette::default(),
+        sink,
+        &mut (),
+    )
 }
 
 /// Renders `job` with `engine` at S = `s` (0, 4 or 12) into a fresh recording sink.
@@ -266,11 +303,13 @@ fn bad_meshes_and_cameras_give_the_precise_error() {
 #[test]
 fn valid_scenes_never_panic_or_write_outside_the_target() {
     let t = Instant::now();
-    let mut rng = Rng::new(0xF022_0000_0002);
+    let (cases, seed) = render_cases();
+    let mut rng = Rng::new(seed);
     let mut outcomes = BTreeMap::<String, usize>::new();
     let mut failures = Vec::new();
     let mut frames = 0usize;
-    for case in 0..RENDER_CASES {
+    let mut valid = 0usize;
+    for case in 0..cases {
         let coordinate: fn(&mut Rng) -> f32 = if rng.chance(0.5) {
             finite
         } else {
@@ -307,6 +346,7 @@ fn valid_scenes_never_panic_or_write_outside_the_target() {
             failures.push(format!("case {case}: adjacency failed with enough storage"));
             continue;
         };
+        valid += 1;
         let (w, h) = [(1, 1), (7, 3), (64, 40), (128, 64), (400, 240)][rng.below(5) as usize];
         let job = Job {
             mesh: &mesh,
@@ -336,6 +376,7 @@ fn valid_scenes_never_panic_or_write_outside_the_target() {
             Engine::Ordered,
             Engine::Z16,
             Engine::Z32,
+            Engine::Fast,
         ] {
             frames += 1;
             let r = catch_unwind(AssertUnwindSafe(|| render(&job, engine, s)));
@@ -370,14 +411,20 @@ fn valid_scenes_never_panic_or_write_outside_the_target() {
                 Err(Error::OutOfRange) => true,
                 // More fragments than face ids can name.
                 Err(Error::TooManyFaces { faces, max }) => {
-                    matches!(engine, Engine::Ordered) && faces > max
+                    matches!(engine, Engine::Ordered | Engine::Fast) && faces > max
+                }
+                // The fast engine keeps at most 6 sub-pixel bits (S = 12 asks 12).
+                Err(Error::SubpixelTooFine { bits, max }) => {
+                    matches!(engine, Engine::Fast) && bits > max
                 }
                 Err(_) => false,
             };
             if job.short
                 && !matches!(
                     result,
-                    Err(Error::CapacityExceeded { .. }) | Err(Error::OutOfRange)
+                    Err(Error::CapacityExceeded { .. })
+                        | Err(Error::OutOfRange)
+                        | Err(Error::SubpixelTooFine { .. })
                 )
             {
                 failures.push(format!(
@@ -402,7 +449,7 @@ fn valid_scenes_never_panic_or_write_outside_the_target() {
         }
     }
     println!(
-        "fuzz render: {RENDER_CASES} scenes, {frames} frames in {:.2} s: {outcomes:?}",
+        "fuzz render: {cases} scenes (seed {seed:#x}), {valid} valid, {frames} frames in {:.2} s: {outcomes:?}",
         t.elapsed().as_secs_f64()
     );
     assert!(
@@ -417,6 +464,7 @@ fn valid_scenes_never_panic_or_write_outside_the_target() {
         "Z16 CapacityExceeded",
         "Ordered Ok",
         "Ordered CodeTooWide",
+        "Fast Ok",
     ] {
         assert!(
             outcomes.get(k).copied().unwrap_or(0) > 0,

@@ -154,7 +154,7 @@ impl<D> Workspace<'_, D> {
 }
 
 /// Figures of one frame.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Stats {
     /// Faces in the mesh.
@@ -178,6 +178,12 @@ pub struct Stats {
     pub peak_faces: u32,
     /// Code-fill engine: the most edges active on one row.
     pub peak_edges: u32,
+    /// The world distance one step of the stored depth stands for at the nearest
+    /// drawn distance (depth is scaled to the distances the frame draws, not to
+    /// near and far): surfaces closer together than this there may tie.
+    pub depth_step_near: f32,
+    /// The same at the farthest drawn distance (larger under perspective).
+    pub depth_step_far: f32,
 }
 
 fn need(needed: usize, capacity: usize) -> Result<(), Error> {
@@ -256,7 +262,9 @@ fn begin_frame<'f, 'm>(
         .iter()
         .flatten()
         .fold(0.0f32, |m, c| m.max(c.abs()));
-    let view = FixedView::new(camera, max_abs, viewport.width, viewport.height, s)?;
+    let mut view = FixedView::new(camera, max_abs, viewport.width, viewport.height, s)?;
+    view.fit_depth(positions);
+    (stats.depth_step_near, stats.depth_step_far) = view.depth_steps(32);
     for (slot, p) in vertices.iter_mut().zip(positions) {
         *slot = ProjectedVertex::new(&view, *p);
     }

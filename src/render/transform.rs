@@ -33,8 +33,11 @@ pub struct ScreenVertex {
     pub x: i32,
     /// Screen y, raw fixed-point bits.
     pub y: i32,
-    /// Nearness, affine in screen space, `Q1.31`: `near / distance` under perspective,
-    /// `(far - distance) / (far - near)` under an orthographic projection. Larger is nearer.
+    /// Nearness, affine in screen space, `Q1.31`, over the distances the frame draws
+    /// (`lo..=hi`, see `FixedView::fit_depth`): from `2^31` at `lo` down to `2^25`
+    /// at `hi`, as `lo (hi - distance) / ((hi - lo) distance)` under perspective and
+    /// `(hi - distance) / (hi - lo)` under an orthographic projection. Larger is
+    /// nearer.
     pub q: u32,
 }
 
@@ -100,6 +103,12 @@ impl ProjectedVertex {
     }
 }
 
+/// The nearness of the farthest drawn distance: a margin below it, so that a
+/// nearness minus a tie stays positive.
+const Q_FLOOR: i64 = 1 << 25;
+/// Nearness units from the farthest to the nearest drawn distance.
+const Q_SPAN: i64 = (1 << 31) - Q_FLOOR;
+
 /// Planes, in clipping order: near, far, then the guard band's four sides.
 const PLANES: usize = 6;
 
@@ -114,6 +123,12 @@ pub(crate) struct FixedView {
     one: i64,
     near: i64,
     far: i64,
+    /// The distances the frame draws (clip units, within near..far): nearness
+    /// spans its whole range between them.
+    z_lo: i64,
+    z_hi: i64,
+    /// `2^sigma`: clip units per world unit.
+    unit: f32,
     /// Guard-band half-size in NDC units.
     guard: i64,
     /// Screen size times 2^S, for projection.
@@ -188,18 +203,61 @@ impl FixedView {
         let (near, far) = camera.near_far();
         let to_clip = |d: f32| (f64::from(d) * unit).min(f64::from(i32::MAX)) as i64;
         let guard = i64::from(GUARD_BAND_PX) / i64::from(width.max(height).max(1)) - 1;
+        let (near, far) = (to_clip(near).max(1), to_clip(far));
         Ok(Self {
             rows,
             eye: eye.map(|e| round_i64(e * pos_scale)),
             pos_scale,
             perspective: camera.is_perspective(),
             one,
-            near: to_clip(near).max(1),
-            far: to_clip(far),
+            near,
+            far,
+            z_lo: near,
+            z_hi: far,
+            unit: pow2(sigma.min(126)),
             guard: guard.max(1),
             width_s: i64::from(width) << s,
             height_s: i64::from(height) << s,
         })
+    }
+
+    /// Fits the depth scale to the distances of `positions` (clamped to near..far):
+    /// nearness then spans its whole `Q1.31` range between the nearest and the
+    /// farthest of them, so that surfaces close together far from the eye get the
+    /// precision the scene has there, whatever near and far are.
+    pub fn fit_depth(&mut self, positions: &[[f32; 3]]) {
+        let (mut lo, mut hi) = (i64::MAX, i64::MIN);
+        for p in positions {
+            // max then min: a far below near (rounded so) must not panic.
+            let z = i64::from(self.clip(*p).z).max(self.near).min(self.far);
+            (lo, hi) = (lo.min(z), hi.max(z));
+        }
+        if lo <= hi {
+            (self.z_lo, self.z_hi) = (lo, hi);
+        }
+    }
+
+    /// The world distance that one step of a `bits`-bit depth sample stands for at
+    /// the nearest and the farthest drawn distance (never finer than the clip grid).
+    pub fn depth_steps(&self, bits: u32) -> (f32, f32) {
+        let (lo, hi) = (self.z_lo as f32, self.z_hi as f32);
+        // Nearness units per sample step (a 16-bit sample keeps the top bits), as a
+        // share of the drawn range.
+        let sample = pow2(32 - bits.clamp(1, 32) as i32) / Q_SPAN as f32;
+        let grid = 1.0 / self.unit;
+        if hi <= lo {
+            return (grid, grid);
+        }
+        let world = |clip: f32| (clip / self.unit).max(grid);
+        if self.perspective {
+            // q = Q_FLOOR + Q_SPAN lo (hi - z) / ((hi - lo) z): dz = (hi - lo) z^2 /
+            // (Q_SPAN lo hi) a unit.
+            let step = |z: f32| world(sample * (hi - lo) * z * z / (lo * hi));
+            (step(lo), step(hi))
+        } else {
+            let step = world(sample * (hi - lo));
+            (step, step)
+        }
     }
 
     /// Clip coordinates of a world position.
@@ -250,10 +308,21 @@ impl FixedView {
         let (x, y, z) = (i64::from(v.x), i64::from(v.y), i64::from(v.z));
         let sx = div_round((x + w) * self.width_s, 2 * w);
         let sy = div_round((w - y) * self.height_s, 2 * w);
-        let q = if self.perspective {
-            (self.near << 31) / z.max(1)
+        let (lo, hi) = (self.z_lo, self.z_hi);
+        let z = z.max(lo).min(hi);
+        let q = if hi <= lo {
+            Q_FLOOR
         } else {
-            ((self.far - z).max(0) << 31) / (self.far - self.near).max(1)
+            // 2^31 at the nearest drawn distance, Q_FLOOR at the farthest; under
+            // perspective affine in 1/z (so in screen space):
+            // Q_FLOOR + Q_SPAN lo (hi - z) / ((hi - lo) z).
+            let t = (hi - z) * Q_SPAN / (hi - lo);
+            Q_FLOOR
+                + if self.perspective {
+                    t * lo / z.max(1)
+                } else {
+                    t
+                }
         };
         ScreenVertex {
             x: sx as i32,

@@ -168,6 +168,7 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
             &mut stats,
         )
         .map_err(Error::widen)?;
+        (stats.depth_step_near, stats.depth_step_far) = ctx.view.depth_steps(D::BITS);
         let Workspace {
             vertices,
             drawn,

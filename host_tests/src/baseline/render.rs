@@ -205,5 +205,6 @@ pub fn render_prepared(
         lines: b.lines,
         packed,
         stats,
+        depth_step: [0.0; 2],
     }
 }

@@ -243,6 +243,10 @@ fn run() -> Result<(), Fail> {
         for (k, v) in &frame.stats {
             text += &format!("{k}: {v}\n");
         }
+        if frame.depth_step != [0.0; 2] {
+            let [near, far] = frame.depth_step;
+            text += &format!("depth_step_near: {near:.3e}\ndepth_step_far: {far:.3e}\n");
+        }
         // The library's own `time_us` (the render call proper) when it reports one;
         // `call_time_us` is the whole `render_frame` call (mesh set-up included).
         if !frame.stats.iter().any(|(k, _)| k == "time_us") {

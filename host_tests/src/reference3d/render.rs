@@ -341,6 +341,7 @@ impl RefFrame {
                 ("faces_drawn".into(), self.faces_drawn as u64),
                 ("feature_edges".into(), self.feature_edges as u64),
             ],
+            depth_step: [0.0; 2],
         }
     }
 }

@@ -62,7 +62,7 @@ pub struct Results {
 pub const BOUND: ErrorBound = ErrorBound { edge_px: 0.25 };
 
 /// The scene bounds of a mesh seen by `cam`: largest coordinate of the vertices and
-/// the eye, bounding radius, the camera's near and far, smallest gap radius / 1000,
+/// the eye, bounding radius, the distances drawn, smallest gap radius / 1000,
 /// and the depth complexity measured by the reference.
 pub fn scene_bounds(mesh: &crate::frame::MeshData, cam: &CameraSpec, layers: usize) -> SceneBounds {
     let max_coordinate = mesh
@@ -72,13 +72,26 @@ pub fn scene_bounds(mesh: &crate::frame::MeshData, cam: &CameraSpec, layers: usi
         .chain(cam.eye.iter())
         .fold(0.0f64, |m, c| m.max(c.abs()));
     let (_, radius) = shapes::bounds(mesh);
-    let b = SceneBounds::perspective(
-        max_coordinate as f32,
-        radius as f32,
-        cam.near as f32,
-        cam.far as f32,
-    )
-    .with_max_layers(layers as u32);
+    // The distances drawn: the vertices' along the view, within near..far (depth is
+    // scaled to them).
+    let dir = std::array::from_fn::<f64, 3, _>(|i| cam.target[i] - cam.eye[i]);
+    let len = dir
+        .iter()
+        .map(|c| c * c)
+        .sum::<f64>()
+        .sqrt()
+        .max(f64::MIN_POSITIVE);
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for v in &mesh.vertices {
+        let d = (0..3).map(|i| (v[i] - cam.eye[i]) * dir[i]).sum::<f64>() / len;
+        let d = d.clamp(cam.near, cam.far);
+        (lo, hi) = (lo.min(d), hi.max(d));
+    }
+    if lo >= hi {
+        (lo, hi) = (cam.near, cam.far);
+    }
+    let b = SceneBounds::perspective(max_coordinate as f32, radius as f32, lo as f32, hi as f32)
+        .with_max_layers(layers as u32);
     SceneBounds {
         orthographic: matches!(cam.projection, ProjectionSpec::Orthographic { .. }),
         ..b

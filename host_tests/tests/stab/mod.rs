@@ -71,6 +71,27 @@ pub const Z16: Config = Config {
     depth_bits: 16,
 };
 
+/// The fast engine (16-bit depth in its row; approximate, issue 23), full frame.
+pub const FAST: Config = Config {
+    engine: EngineSpec::Fast,
+    band: 0,
+    depth_bits: 16,
+};
+
+/// Warnock's subdivision and the ray caster, full frame, 32-bit nearness.
+pub const SUBDIVIDING: [Config; 2] = [
+    Config {
+        engine: EngineSpec::Warnock,
+        band: 0,
+        depth_bits: 32,
+    },
+    Config {
+        engine: EngineSpec::Raycast,
+        band: 0,
+        depth_bits: 32,
+    },
+];
+
 /// Every configuration.
 pub fn all() -> Vec<Config> {
     let mut v = EXACT.to_vec();

@@ -103,7 +103,16 @@ pub(super) fn clip_polygon(
     let (near, far) = (map.near, map.far);
     clip_by(&mut eye, |e| e[2] >= near, |a, b| cut_eye(a, b, near))?;
     clip_by(&mut eye, |e| e[2] <= far, |a, b| cut_eye(a, b, far))?;
-    let mut screen: Poly<ScreenPoint> = eye.iter().map(|&e| map.screen(e)).collect();
+    let mut screen: Poly<ScreenPoint> = Vec::new();
+    for &e in &eye {
+        // As many as `eye` holds: never full (and no panic path, unlike `collect`).
+        screen
+            .push(map.screen(e))
+            .map_err(|_| Error::CapacityExceeded {
+                needed: CLIP_CORNERS + 1,
+                capacity: CLIP_CORNERS,
+            })?;
+    }
     let l = map.limit;
     for side in 0..4 {
         clip_by(

@@ -37,6 +37,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             *slot = map.vertex(*p);
         }
         let lists = self.lists(baked, &map, settings, ws, viewport);
+        let (depth_step_near, depth_step_far) = map.depth_steps();
         let mut stats = Stats {
             faces: mesh.face_count() as u32,
             faces_drawn: lists.faces_drawn,
@@ -44,6 +45,8 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             bands: u32::from(viewport.height),
             band_rows: 1,
             depth_buffer_bytes: (width * 4) as u32,
+            depth_step_near,
+            depth_step_far,
             ..Stats::default()
         };
         self.facets.clear();
@@ -126,7 +129,9 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                 while let Some(line) = self.lines.get_mut(i) {
                     if line.row(yi, s, test, row, slopes, &beside, visible, hidden) {
                         i += 1;
-                    } else {
+                    } else if i < self.lines.len() {
+                        // Always so (`get_mut(i)` found it); the test lets the
+                        // compiler drop `swap_remove`'s panic path.
                         self.lines.swap_remove(i);
                     }
                 }

@@ -74,6 +74,9 @@ pub(super) struct ScreenMap {
     pub limit: f32,
     q_far: f32,
     scale: f32,
+    /// The distances the frame draws, within near..far.
+    lo: f32,
+    hi: f32,
     pub viewpoint: Viewpoint,
     pub s: u32,
 }
@@ -106,6 +109,8 @@ impl ScreenMap {
             limit: guard_px(s) as f32 * unit,
             q_far: 0.0,
             scale: 0.0,
+            lo: near,
+            hi: far,
             viewpoint: camera.viewpoint(),
             s,
         };
@@ -119,6 +124,7 @@ impl ScreenMap {
         if lo > hi {
             (lo, hi) = (near, far);
         }
+        (map.lo, map.hi) = (lo, hi);
         let (q_near, q_far) = (map.nearness(lo), map.nearness(hi));
         let span = q_near - q_far;
         let scale = (65536.0 - 2.0 * MARGIN) * 65536.0 / span;
@@ -129,6 +135,22 @@ impl ScreenMap {
             0.0
         };
         map
+    }
+
+    /// The world distance one step of the row's 16-bit depth stands for at the
+    /// nearest and the farthest drawn distance (never finer than `f32` there).
+    pub fn depth_steps(&self) -> (f32, f32) {
+        let units = 65536.0 - 2.0 * MARGIN;
+        let span = self.nearness(self.lo) - self.nearness(self.hi);
+        let step = |z: f32| {
+            let dz = if self.perspective {
+                z * z * span / units
+            } else {
+                span / units
+            };
+            dz.max(z.abs() * f32::EPSILON)
+        };
+        (step(self.lo), step(self.hi))
     }
 
     fn nearness(&self, z: f32) -> f32 {

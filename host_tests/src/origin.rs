@@ -1,0 +1,211 @@
+//! A local origin for scenes far from the world's origin (issue 24, item 4): OBJ
+//! coordinates are read in `f64`, and a scene seen from an eye far from the origin
+//! compared with the view's size (geographic or CAD world coordinates) is moved, in
+//! `f64`, so that the eye is the origin (the target moved with it), before anything
+//! becomes `f32` or fixed point. The picture is the same (the
+//! camera sees the same scene); only the rounding is local. The library documents
+//! the same practice for meshes it is handed (README, "World coordinates far from
+//! the origin").
+
+use crate::frame::{CameraSpec, MeshData, ProjectionSpec};
+
+/// How far (in multiples of the eye's distance to its target) the eye may lie from
+/// the origin before the scene is moved: 64 costs `f32` six of its 24 bits there.
+const FAR_FACTOR: f64 = 64.0;
+
+/// The origin to move the scene to, when it needs one: the eye, when it lies more
+/// than `FAR_FACTOR` times its distance to the target from the world's origin.
+/// Under perspective the precision a frame needs falls with the distance from the
+/// eye, and positions relative to the eye in `f32` keep exactly that: a box a few
+/// units away gets 2^-20 of a unit, a ground corner 1e9 away 2^7. (The centre of
+/// the drawn geometry's bounding box would do for a scene of one size; a ground
+/// reaching 1e9 inside far pulls that centre 1e9 away from the boxes beside the
+/// eye.) `None` when the scene is near enough (it is left as it is, bit for bit).
+pub fn local_origin(_mesh: &MeshData, cam: &CameraSpec) -> Option<[f64; 3]> {
+    let view = (0..3)
+        .map(|i| (cam.target[i] - cam.eye[i]).powi(2))
+        .sum::<f64>()
+        .sqrt();
+    let far = cam.eye.iter().fold(0.0f64, |m, c| m.max(c.abs()));
+    (far > FAR_FACTOR * view && cam.eye.iter().all(|c| c.is_finite())).then_some(cam.eye)
+}
+
+/// The scene moved to its local origin (see [`local_origin`]) and its huge faces
+/// cut (see [`cut_huge_faces`]), or `None` when it stays as it is.
+pub fn localised(mesh: &MeshData, cam: &CameraSpec, aspect: f64) -> Option<(MeshData, CameraSpec)> {
+    let origin = local_origin(mesh, cam);
+    let (mut moved, mut cam) = (mesh.clone(), *cam);
+    if let Some(o) = origin {
+        let shift = |p: [f64; 3]| std::array::from_fn(|i| p[i] - o[i]);
+        moved.vertices.iter_mut().for_each(|v| *v = shift(*v));
+        (cam.eye, cam.target) = (shift(cam.eye), shift(cam.target));
+    }
+    let cut = cut_huge_faces(&mut moved, &cam, aspect);
+    (origin.is_some() || cut).then_some((moved, cam))
+}
+
+/// A face reaching farther from the eye than `HUGE` near distances: `f32` places
+/// its corners there to within `HUGE 2^-24` near distances, which misplaces its
+/// plane by as much where it passes the eye.
+const HUGE: f64 = 65536.0;
+
+/// Cuts, in `f64`, every face that reaches farther than [`HUGE`] near distances from
+/// the eye to the part of it inside a widened view volume: between `near / 2` and
+/// `2 far` in front of the eye, and within twice the view's extent sideways (for a
+/// frame of aspect `aspect`, width over height). The corners `f32` then sees are
+/// where the frame needs them, and every cut edge lies outside the view volume, so
+/// none is ever drawn. A cut point of an edge is computed from its lower-numbered
+/// end and shared by every face with that edge, so the cut mesh stays welded; faces
+/// keep their indices (a face wholly outside is left as it is: the library clips it
+/// away). True when any face was cut.
+pub fn cut_huge_faces(mesh: &mut MeshData, cam: &CameraSpec, aspect: f64) -> bool {
+    let dir: [f64; 3] = std::array::from_fn(|i| cam.target[i] - cam.eye[i]);
+    let (Some(fwd), Some(right)) = (unit(dir), unit(cross(dir, cam.up))) else {
+        return false;
+    };
+    let up = cross(right, fwd);
+    let reach = |p: [f64; 3]| dot(sub(p, cam.eye), sub(p, cam.eye)).sqrt();
+    // Planes (n, c): inside where n . (p - eye) + c >= 0.
+    let mut planes = vec![(fwd, -0.5 * cam.near), (fwd.map(|c| -c), 2.0 * cam.far)];
+    let aspect = aspect.max(1e-6);
+    for (axis, extent) in [(right, aspect), (up, 1.0)] {
+        for sign in [1.0, -1.0] {
+            let lean = axis.map(|c| -sign * c);
+            planes.push(match cam.projection {
+                ProjectionSpec::Perspective { fov_deg } => {
+                    let s = 2.0 * extent * (0.5 * fov_deg.to_radians()).tan();
+                    (std::array::from_fn(|i| s * fwd[i] + lean[i]), 0.0)
+                }
+                ProjectionSpec::Orthographic { half_height } => (lean, 2.0 * extent * half_height),
+            });
+        }
+    }
+    let mut cuts = std::collections::HashMap::<(u32, u32, usize), u32>::new();
+    let mut any = false;
+    for f in 0..mesh.faces.len() {
+        let huge = mesh.faces[f]
+            .iter()
+            .any(|&v| reach(mesh.vertices[v as usize]) > HUGE * cam.near);
+        if !huge {
+            continue;
+        }
+        let mut poly = mesh.faces[f].clone();
+        for (k, &(n, c)) in planes.iter().enumerate() {
+            let side = |v: u32, m: &MeshData| dot(n, sub(m.vertices[v as usize], cam.eye)) + c;
+            let inside: Vec<bool> = poly.iter().map(|&v| side(v, mesh) >= 0.0).collect();
+            if inside.iter().all(|&i| i) || !inside.iter().any(|&i| i) {
+                continue;
+            }
+            let mut out = Vec::new();
+            for i in 0..poly.len() {
+                let j = (i + 1) % poly.len();
+                let (a, b) = (poly[i], poly[j]);
+                if inside[i] {
+                    out.push(a);
+                }
+                if inside[i] != inside[j] {
+                    let key = (a.min(b), a.max(b), k);
+                    let cut = *cuts.entry(key).or_insert_with(|| {
+                        let (p, q) = (key.0, key.1);
+                        let (sp, sq) = (side(p, mesh), side(q, mesh));
+                        let t = sp / (sp - sq);
+                        let (pp, pq) = (mesh.vertices[p as usize], mesh.vertices[q as usize]);
+                        mesh.vertices
+                            .push(std::array::from_fn(|i| pp[i] + t * (pq[i] - pp[i])));
+                        (mesh.vertices.len() - 1) as u32
+                    });
+                    out.push(cut);
+                }
+            }
+            poly = out;
+            any = true;
+        }
+        mesh.faces[f] = poly;
+    }
+    if any {
+        // Corners no face uses any more would still set the fixed-point scale (the
+        // largest coordinate): moved onto a corner in use (they draw nothing).
+        let mut used = vec![false; mesh.vertices.len()];
+        mesh.faces
+            .iter()
+            .flatten()
+            .for_each(|&v| used[v as usize] = true);
+        if let Some(&keep) = mesh.faces.iter().flatten().next() {
+            let spot = mesh.vertices[keep as usize];
+            for (v, p) in mesh.vertices.iter_mut().enumerate() {
+                if !used[v] && reach(*p) > HUGE * cam.near {
+                    *p = spot;
+                }
+            }
+        }
+    }
+    any
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn unit(a: [f64; 3]) -> Option<[f64; 3]> {
+    let len = dot(a, a).sqrt();
+    (len > 0.0 && len.is_finite()).then(|| a.map(|c| c / len))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cam(eye: [f64; 3], target: [f64; 3]) -> CameraSpec {
+        CameraSpec {
+            eye,
+            target,
+            up: [0.0, 1.0, 0.0],
+            projection: ProjectionSpec::Perspective { fov_deg: 40.0 },
+            near: 0.1,
+            far: 1000.0,
+        }
+    }
+
+    fn box_at(c: [f64; 3]) -> MeshData {
+        MeshData {
+            vertices: vec![
+                [c[0] - 1.0, c[1] - 1.0, c[2]],
+                [c[0] + 1.0, c[1] - 1.0, c[2]],
+                [c[0] + 1.0, c[1] + 1.0, c[2]],
+            ],
+            faces: vec![vec![0, 1, 2]],
+        }
+    }
+
+    #[test]
+    fn a_scene_near_the_origin_stays_put() {
+        let m = box_at([3.0, 0.0, 0.0]);
+        assert_eq!(
+            local_origin(&m, &cam([3.0, 0.0, 10.0], [3.0, 0.0, 0.0])),
+            None
+        );
+    }
+
+    #[test]
+    fn a_scene_far_away_moves_so_that_the_eye_is_the_origin() {
+        let c = [1e7, -2e7, 3e7];
+        let m = box_at(c);
+        let eye = [c[0], c[1], c[2] + 10.0];
+        let (moved, cam) = localised(&m, &cam(eye, c), 1.0).expect("moved");
+        assert_eq!(moved.vertices[0], [-1.0, -1.0, -10.0]);
+        assert_eq!(cam.eye, [0.0; 3]);
+        assert_eq!(cam.target, [0.0, 0.0, -10.0]);
+    }
+}
