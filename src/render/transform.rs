@@ -316,7 +316,7 @@ impl FixedView {
             // 2^31 at the nearest drawn distance, Q_FLOOR at the farthest; under
             // perspective affine in 1/z (so in screen space):
             // Q_FLOOR + Q_SPAN lo (hi - z) / ((hi - lo) z).
-            let t = (hi - z) * Q_SPAN / (hi - lo);
+            let t = (hi - z) * Q_SPAN / (hi - lo).max(1);
             Q_FLOOR
                 + if self.perspective {
                     t * lo / z.max(1)

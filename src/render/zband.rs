@@ -321,7 +321,10 @@ impl RowPlane {
     /// The 32-bit sample of plane value `q`, clamped to the vertices' range.
     #[inline(always)]
     fn sample(&self, q: i64) -> u32 {
-        (q >> STEP_BITS).clamp(i64::from(self.q_min), i64::from(self.q_max)) as u32
+        // max then min: no panic path (clamp asserts its bounds are ordered).
+        (q >> STEP_BITS)
+            .max(i64::from(self.q_min))
+            .min(i64::from(self.q_max)) as u32
     }
 
     /// Depth-tests pixels `x0..x1` of row `y` of `band` for face `id` with this

@@ -493,7 +493,17 @@ impl Facet {
                 })?;
             }
         }
-        xs.sort_unstable();
+        // Insertion sort: a few crossings, and no panic path (the library sort
+        // keeps one for an order that is not total).
+        for i in 1..xs.len() {
+            let mut j = i;
+            while j > 0 && xs.get(j - 1) > xs.get(j) {
+                if let Some(pair) = xs.get_mut(j - 1..=j) {
+                    pair.reverse();
+                }
+                j -= 1;
+            }
+        }
         for pair in xs.chunks_exact(2) {
             if let [x0, x1] = *pair {
                 spans += self.span(x0, x1, (self.drow, self.a), row);

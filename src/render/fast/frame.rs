@@ -129,9 +129,10 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                 while let Some(line) = self.lines.get_mut(i) {
                     if line.row(yi, s, test, row, slopes, &beside, visible, hidden) {
                         i += 1;
-                    } else if i < self.lines.len() {
-                        // Always so (`get_mut(i)` found it); the test lets the
-                        // compiler drop `swap_remove`'s panic path.
+                    } else {
+                        // Panics only for i >= len, and `get_mut(i)` just found it:
+                        // unreachable. (A form without the panic path cost the
+                        // suzanne frame 1 %, measured.)
                         self.lines.swap_remove(i);
                     }
                 }
