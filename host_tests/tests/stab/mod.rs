@@ -278,6 +278,20 @@ pub fn check(
             l.line_pixels,
             l.first_misclassified
         );
+        // Line length missing (issue 24, item 5: never asserted here before).
+        let limit = host_tests::metrics::MISSING_LIMIT;
+        assert!(
+            !lines
+                || (l.visible_missing_fraction() <= limit && l.hidden_missing_fraction() <= limit),
+            "{case} {}: visible {:.1} of {:.1} and hidden {:.1} of {:.1} missing (first at {:?}, {:?})",
+            config.label(),
+            l.visible_missing,
+            l.visible_len,
+            l.hidden_missing,
+            l.hidden_len,
+            l.first_visible_missing,
+            l.first_hidden_missing
+        );
     }
     (first.expect("at least one configuration"), rf)
 }
