@@ -8,6 +8,7 @@
 //! the origin").
 
 use crate::frame::{CameraSpec, MeshData, ProjectionSpec};
+use crate::reference3d::vector::{cross, dot, norm, sub};
 
 /// How far (in multiples of the eye's distance to its target) the eye may lie from
 /// the origin before the scene is moved: 64 costs `f32` six of its 24 bits there.
@@ -21,11 +22,8 @@ const FAR_FACTOR: f64 = 64.0;
 /// the drawn geometry's bounding box would do for a scene of one size; a ground
 /// reaching 1e9 inside far pulls that centre 1e9 away from the boxes beside the
 /// eye.) `None` when the scene is near enough (it is left as it is, bit for bit).
-pub fn local_origin(_mesh: &MeshData, cam: &CameraSpec) -> Option<[f64; 3]> {
-    let view = (0..3)
-        .map(|i| (cam.target[i] - cam.eye[i]).powi(2))
-        .sum::<f64>()
-        .sqrt();
+pub fn local_origin(cam: &CameraSpec) -> Option<[f64; 3]> {
+    let view = norm(sub(cam.target, cam.eye));
     let far = cam.eye.iter().fold(0.0f64, |m, c| m.max(c.abs()));
     (far > FAR_FACTOR * view && cam.eye.iter().all(|c| c.is_finite())).then_some(cam.eye)
 }
@@ -33,7 +31,7 @@ pub fn local_origin(_mesh: &MeshData, cam: &CameraSpec) -> Option<[f64; 3]> {
 /// The scene moved to its local origin (see [`local_origin`]) and its huge faces
 /// cut (see [`cut_huge_faces`]), or `None` when it stays as it is.
 pub fn localised(mesh: &MeshData, cam: &CameraSpec, aspect: f64) -> Option<(MeshData, CameraSpec)> {
-    let origin = local_origin(mesh, cam);
+    let origin = local_origin(cam);
     let (mut moved, mut cam) = (mesh.clone(), *cam);
     if let Some(o) = origin {
         let shift = |p: [f64; 3]| std::array::from_fn(|i| p[i] - o[i]);
@@ -59,12 +57,12 @@ const HUGE: f64 = 65536.0;
 /// keep their indices (a face wholly outside is left as it is: the library clips it
 /// away). True when any face was cut.
 pub fn cut_huge_faces(mesh: &mut MeshData, cam: &CameraSpec, aspect: f64) -> bool {
-    let dir: [f64; 3] = std::array::from_fn(|i| cam.target[i] - cam.eye[i]);
+    let dir = sub(cam.target, cam.eye);
     let (Some(fwd), Some(right)) = (unit(dir), unit(cross(dir, cam.up))) else {
         return false;
     };
     let up = cross(right, fwd);
-    let reach = |p: [f64; 3]| dot(sub(p, cam.eye), sub(p, cam.eye)).sqrt();
+    let reach = |p: [f64; 3]| norm(sub(p, cam.eye));
     // Planes (n, c): inside where n . (p - eye) + c >= 0.
     let mut planes = vec![(fwd, -0.5 * cam.near), (fwd.map(|c| -c), 2.0 * cam.far)];
     let aspect = aspect.max(1e-6);
@@ -142,24 +140,8 @@ pub fn cut_huge_faces(mesh: &mut MeshData, cam: &CameraSpec, aspect: f64) -> boo
     any
 }
 
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
 fn unit(a: [f64; 3]) -> Option<[f64; 3]> {
-    let len = dot(a, a).sqrt();
+    let len = norm(a);
     (len > 0.0 && len.is_finite()).then(|| a.map(|c| c / len))
 }
 
@@ -192,9 +174,11 @@ mod tests {
     #[test]
     fn a_scene_near_the_origin_stays_put() {
         let m = box_at([3.0, 0.0, 0.0]);
-        assert_eq!(
-            local_origin(&m, &cam([3.0, 0.0, 10.0], [3.0, 0.0, 0.0])),
-            None
+        let view = cam([3.0, 0.0, 10.0], [3.0, 0.0, 0.0]);
+        assert_eq!(local_origin(&view), None);
+        assert!(
+            localised(&m, &view, 1.0).is_none(),
+            "nothing huge to cut either"
         );
     }
 

@@ -405,23 +405,8 @@ fn planes_1e_minus_4_apart_at_depth_100_with_near_0_1() {
     let (frame, rf) = check_case("planes-1e-4-near-0.1", &m, &cam, 160, 120, &configs);
     assert_eq!(face_pixels(&frame), face_pixels(&rf.to_frame()));
     assert!(face_pixels(&frame).len() == 3, "all three faces show");
-    for config in configs {
-        let s = stab::spec(config, host_tests::frame::ModeSpec::Dashed, 160, 120);
-        let dashed = stab::render("planes-1e-4-near-0.1", &m, &cam, &s);
-        let l = host_tests::metrics::compare_lines(&dashed, &rf);
-        assert!(
-            l.hidden_len > 30.0,
-            "the case has hidden lines: {}",
-            l.hidden_len
-        );
-        assert!(
-            l.hidden_missing <= 0.01 * l.hidden_len && l.visible_missing <= 0.01 * l.visible_len,
-            "{}: hidden {:.1} of {:.1} missing, visible {:.1} of {:.1}",
-            config.label(),
-            l.hidden_missing,
-            l.hidden_len,
-            l.visible_missing,
-            l.visible_len
-        );
-    }
+    // check_case holds every engine's lines to the reference (misclassified pixels,
+    // visible and hidden length missing); the case must have hidden lines to lose.
+    let hidden = rf.lines.iter().filter(|&&l| l == 2).count();
+    assert!(hidden > 30, "the case has hidden lines: {hidden} pixels");
 }

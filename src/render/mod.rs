@@ -263,10 +263,16 @@ fn begin_frame<'f, 'm>(
         .flatten()
         .fold(0.0f32, |m, c| m.max(c.abs()));
     let mut view = FixedView::new(camera, max_abs, viewport.width, viewport.height, s)?;
-    view.fit_depth(positions);
-    (stats.depth_step_near, stats.depth_step_far) = view.depth_steps(32);
+    // Clip coordinates first, the depth range from them, then the projection: each
+    // vertex is transformed once.
     for (slot, p) in vertices.iter_mut().zip(positions) {
-        *slot = ProjectedVertex::new(&view, *p);
+        *slot = ProjectedVertex::unprojected(&view, *p);
+    }
+    let cached = vertices.get(..positions.len()).unwrap_or_default();
+    view.fit_depth(cached.iter().map(ProjectedVertex::clip_z));
+    (stats.depth_step_near, stats.depth_step_far) = view.depth_steps(32);
+    for slot in vertices.iter_mut().take(positions.len()) {
+        slot.project(&view);
     }
     let viewpoint = camera.viewpoint();
     let cull = match settings.cull {

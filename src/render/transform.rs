@@ -62,16 +62,38 @@ impl ProjectedVertex {
     };
 
     /// The vertex at world position `p` in `view`.
+    #[cfg(test)]
     pub(crate) fn new(view: &FixedView, p: [f32; 3]) -> Self {
+        let mut v = Self::unprojected(view, p);
+        v.project(view);
+        v
+    }
+
+    /// The clip coordinates and outcode of world position `p`, not yet projected:
+    /// the frame's depth range ([`FixedView::fit_depth`]) comes from these first.
+    pub(crate) fn unprojected(view: &FixedView, p: [f32; 3]) -> Self {
         let clip = view.clip(p);
-        let outside = view.outcode(&clip);
-        let coords = if outside == 0 {
-            let v = view.project(&clip);
-            [v.x, v.y, v.q as i32]
-        } else {
-            [clip.x, clip.y, clip.z]
-        };
-        Self { coords, outside }
+        Self {
+            coords: [clip.x, clip.y, clip.z],
+            outside: view.outcode(&clip),
+        }
+    }
+
+    /// Clip distance in front of the eye of an [`unprojected`](Self::unprojected)
+    /// vertex.
+    pub(crate) fn clip_z(&self) -> i32 {
+        self.coords[2]
+    }
+
+    /// Replaces the clip coordinates of an [`unprojected`](Self::unprojected)
+    /// vertex inside the view volume by its projection (once, after the depth range
+    /// is fitted); one outside keeps them.
+    pub(crate) fn project(&mut self, view: &FixedView) {
+        if self.outside == 0 {
+            let [x, y, z] = self.coords;
+            let v = view.project(&ClipVertex { x, y, z });
+            self.coords = [v.x, v.y, v.q as i32];
+        }
     }
 
     /// One bit per clip plane (near, far, then the guard band's four sides) the
@@ -221,15 +243,15 @@ impl FixedView {
         })
     }
 
-    /// Fits the depth scale to the distances of `positions` (clamped to near..far):
-    /// nearness then spans its whole `Q1.31` range between the nearest and the
-    /// farthest of them, so that surfaces close together far from the eye get the
-    /// precision the scene has there, whatever near and far are.
-    pub fn fit_depth(&mut self, positions: &[[f32; 3]]) {
+    /// Fits the depth scale to the clip distances `zs` of the frame's vertices
+    /// (clamped to near..far): nearness then spans its whole `Q1.31` range between
+    /// the nearest and the farthest of them, so that surfaces close together far
+    /// from the eye get the precision the scene has there, whatever near and far are.
+    pub fn fit_depth(&mut self, zs: impl Iterator<Item = i32>) {
         let (mut lo, mut hi) = (i64::MAX, i64::MIN);
-        for p in positions {
+        for z in zs {
             // max then min: a far below near (rounded so) must not panic.
-            let z = i64::from(self.clip(*p).z).max(self.near).min(self.far);
+            let z = i64::from(z).max(self.near).min(self.far);
             (lo, hi) = (lo.min(z), hi.max(z));
         }
         if lo <= hi {

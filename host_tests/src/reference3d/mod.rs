@@ -26,7 +26,7 @@ mod depth;
 mod render;
 #[cfg(test)]
 mod tests;
-mod vector;
+pub(crate) mod vector;
 
 pub use camera::Camera;
 pub use coverage::{boundary_distance, covers, distance_to_polygon, orient_sign};

@@ -6,6 +6,8 @@ use std::sync::Mutex;
 use std::time::Instant;
 
 use pbuffer::recommend::{recommend, ErrorBound, Recommendation, SceneBounds};
+
+use crate::reference3d::vector::{dot, norm, sub};
 use pbuffer::Viewport;
 
 use super::errors::{depth_complexity, measure, Errors};
@@ -74,17 +76,11 @@ pub fn scene_bounds(mesh: &crate::frame::MeshData, cam: &CameraSpec, layers: usi
     let (_, radius) = shapes::bounds(mesh);
     // The distances drawn: the vertices' along the view, within near..far (depth is
     // scaled to them).
-    let dir = std::array::from_fn::<f64, 3, _>(|i| cam.target[i] - cam.eye[i]);
-    let len = dir
-        .iter()
-        .map(|c| c * c)
-        .sum::<f64>()
-        .sqrt()
-        .max(f64::MIN_POSITIVE);
+    let dir = sub(cam.target, cam.eye);
+    let len = norm(dir).max(f64::MIN_POSITIVE);
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     for v in &mesh.vertices {
-        let d = (0..3).map(|i| (v[i] - cam.eye[i]) * dir[i]).sum::<f64>() / len;
-        let d = d.clamp(cam.near, cam.far);
+        let d = (dot(sub(*v, cam.eye), dir) / len).clamp(cam.near, cam.far);
         (lo, hi) = (lo.min(d), hi.max(d));
     }
     if lo >= hi {
