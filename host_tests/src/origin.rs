@@ -3,7 +3,9 @@
 //! compared with the view's size (geographic or CAD world coordinates) is moved, in
 //! `f64`, so that the eye is the origin (the target moved with it), before anything
 //! becomes `f32` or fixed point. The picture is the same (the
-//! camera sees the same scene); only the rounding is local. The library documents
+//! camera sees the same scene); only the rounding is local. A perspective scene
+//! that still reaches very far from the eye is then brought nearer along its rays
+//! ([`warp_far_depths`]), with the same picture. The library documents
 //! the same practice for meshes it is handed (README, "World coordinates far from
 //! the origin").
 
@@ -39,7 +41,56 @@ pub fn localised(mesh: &MeshData, cam: &CameraSpec, aspect: f64) -> Option<(Mesh
         (cam.eye, cam.target) = (shift(cam.eye), shift(cam.target));
     }
     let cut = cut_huge_faces(&mut moved, &cam, aspect);
-    (origin.is_some() || cut).then_some((moved, cam))
+    let warped = warp_far_depths(&mut moved, &mut cam);
+    (origin.is_some() || cut || warped).then_some((moved, cam))
+}
+
+/// Brings a perspective scene that still reaches farther than [`HUGE`] near
+/// distances from the eye (a ground inside a far plane of 1e10) within `2 HUGE`
+/// near distances, with the same picture: every point `p` at depth `z` in front of
+/// the eye (along the view axis) moves along its own ray from the eye to
+/// `eye + (p - eye) / (1 + z / Z)`, `Z = 2 HUGE near`, and near and far with it.
+/// This map is projective (planes stay planes, edges stay straight), keeps every
+/// ray from the eye and the order of depths along it, and adds the constant `1 / Z`
+/// to nearness `1 / z`: what each pixel sees, the facing of every face and the
+/// silhouettes are the same, and the fixed-point engines' depth (affine in
+/// nearness, fitted to the drawn range) steps as before. What it does not keep is
+/// angles: a crease within about `z / Z` radians of the crease angle may change
+/// kind. True when the scene was warped. (Points behind the eye lie within
+/// `HUGE` near distances after `cut_huge_faces`, where the factor stays below 2.)
+pub fn warp_far_depths(mesh: &mut MeshData, cam: &mut CameraSpec) -> bool {
+    if !matches!(cam.projection, ProjectionSpec::Perspective { .. }) {
+        return false;
+    }
+    let Some(fwd) = unit(sub(cam.target, cam.eye)) else {
+        return false;
+    };
+    let mut used = vec![false; mesh.vertices.len()];
+    mesh.faces
+        .iter()
+        .flatten()
+        .for_each(|&v| used[v as usize] = true);
+    let reach = |p: &[f64; 3]| norm(sub(*p, cam.eye));
+    let huge = mesh
+        .vertices
+        .iter()
+        .zip(&used)
+        .any(|(p, &u)| u && reach(p) > HUGE * cam.near);
+    if !huge {
+        return false;
+    }
+    let z0 = 2.0 * HUGE * cam.near;
+    let eye = cam.eye;
+    let warp = |p: [f64; 3]| -> [f64; 3] {
+        let d = sub(p, eye);
+        let k = 1.0 / (1.0 + dot(fwd, d) / z0).max(0.5);
+        std::array::from_fn(|i| eye[i] + k * d[i])
+    };
+    mesh.vertices.iter_mut().for_each(|p| *p = warp(*p));
+    cam.target = warp(cam.target);
+    let depth = |z: f64| z / (1.0 + z / z0);
+    (cam.near, cam.far) = (depth(cam.near), depth(cam.far));
+    true
 }
 
 /// A face reaching farther from the eye than `HUGE` near distances: `f32` places
@@ -191,5 +242,41 @@ mod tests {
         assert_eq!(moved.vertices[0], [-1.0, -1.0, -10.0]);
         assert_eq!(cam.eye, [0.0; 3]);
         assert_eq!(cam.target, [0.0, 0.0, -10.0]);
+    }
+
+    #[test]
+    fn a_far_reaching_scene_is_warped_along_its_rays_with_the_same_picture() {
+        let mut m = MeshData {
+            vertices: vec![
+                [-1e9, -1.0, -1e9],
+                [1e9, -1.0, -1e9],
+                [0.0, -1.0, -2.0],
+                [0.5, 0.0, -3.0],
+            ],
+            faces: vec![vec![0, 1, 2], vec![0, 1, 3]],
+        };
+        let before = m.clone();
+        let mut view = cam([0.0; 3], [0.0, 0.0, -1.0]);
+        view.far = 1e10;
+        assert!(warp_far_depths(&mut m, &mut view));
+        let z0 = 2.0 * HUGE * 0.1;
+        for (p, q) in before.vertices.iter().zip(&m.vertices) {
+            // Same ray from the eye (the origin), same order of depths, within Z.
+            let k = q[2] / p[2];
+            assert!(k > 0.0 && k <= 1.0, "{p:?} -> {q:?}");
+            assert!((q[0] - k * p[0]).abs() <= 1e-9 * p[0].abs().max(1.0));
+            assert!(-q[2] < z0);
+        }
+        assert!(-m.vertices[2][2] < -m.vertices[3][2]);
+        assert!(view.far < z0 && (view.near - 0.1).abs() < 1e-6);
+        // A scene within reach is left as it is.
+        let mut near = before.clone();
+        near.vertices.truncate(4);
+        near.vertices[0] = [-1.0, -1.0, -5.0];
+        near.vertices[1] = [1.0, -1.0, -5.0];
+        assert!(!warp_far_depths(
+            &mut near,
+            &mut cam([0.0; 3], [0.0, 0.0, -1.0])
+        ));
     }
 }
