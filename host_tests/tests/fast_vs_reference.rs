@@ -7,7 +7,7 @@
 //! prints the table.
 
 use host_tests::frame::{CameraSpec, EngineSpec, ModeSpec, ProjectionSpec, RenderSpec};
-use host_tests::metrics::near_edge_mask;
+use host_tests::metrics::{near_edge_mask, snapping_bound, unexplained_diffs};
 use host_tests::pipeline::render_frame;
 use host_tests::reference3d::reference_frame;
 use host_tests::report::engines::{scene_names, spec};
@@ -35,8 +35,8 @@ const MISSING_PCT: f64 = 1.0;
 fn fast_engine_is_within_the_accuracy_limits_on_every_scene() {
     let mut failures = Vec::new();
     let mut rows = 0;
-    println!("| scene | size | covered away | far+wrong+order | far % | holes | misclassified % | visible missing % | hidden missing % |");
-    println!("|:--|:--|--:|--:|--:|--:|--:|--:|--:|");
+    println!("| scene | size | covered away | far+wrong+order | far % | off every edge | holes | misclassified % | visible missing % | hidden missing % |");
+    println!("|:--|:--|--:|--:|--:|--:|--:|--:|--:|--:|");
     for size in [(400, 240), (128, 64)] {
         for name in scene_names(false) {
             let scene = load_scene(name).unwrap_or_else(|e| panic!("{name}: {e}"));
@@ -49,8 +49,12 @@ fn fast_engine_is_within_the_accuracy_limits_on_every_scene() {
             let away = covered_away(&rf);
             let far = e.far_diffs + e.wrong_faces + e.depth_order;
             let far_pct = far_pct(&e, &rf);
+            // The exact rule with the fast engine's own snapping: a vertex may land
+            // one grid step (2^-S px) further than the exact snap.
+            let bound = snapping_bound(4) + 1.0 / 16.0;
+            let (off_edge, first) = unexplained_diffs(&frame, &rf, bound);
             println!(
-                "| {name} | {}x{} | {away} | {far} | {far_pct:.3} | {} | {:.3} | {:.3} | {:.3} |",
+                "| {name} | {}x{} | {away} | {far} | {far_pct:.3} | {off_edge} {first:?} | {} | {:.3} | {:.3} | {:.3} |",
                 size.0,
                 size.1,
                 e.holes,
@@ -64,6 +68,18 @@ fn fast_engine_is_within_the_accuracy_limits_on_every_scene() {
             let over = OVER.iter().find(|o| o.0 == name && o.1 == size);
             if e.holes > 0 {
                 fail(format!("{} holes", e.holes));
+            }
+            // Measured (2026-11-26): none but 7 on suzanne at 400x240 (bent faces, one
+            // plane per fan triangle in 16-bit depth, where they meet others).
+            let off_edge_most = if (name, size) == ("suzanne", (400, 240)) {
+                7
+            } else {
+                0
+            };
+            if off_edge > off_edge_most {
+                fail(format!(
+                    "{off_edge} face-id differences off every edge (first at {first:?}), over {off_edge_most}"
+                ));
             }
             match over {
                 Some(&(_, _, most, _)) if far > most => {

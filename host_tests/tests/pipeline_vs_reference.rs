@@ -14,7 +14,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use host_tests::frame::{CameraSpec, EngineSpec, MeshData, ModeSpec, RenderSpec};
-use host_tests::metrics::{compare, SceneMetrics};
+use host_tests::metrics::{compare, snapping_bound, unexplained_diffs, SceneMetrics};
 use host_tests::pipeline::render_frame;
 use host_tests::reference3d::reference_frame;
 use host_tests::shapes;
@@ -119,6 +119,17 @@ fn run_scene(
             }
             if let Err(e) = m.check() {
                 failures.push(format!("{e} [camera {cam:?}]"));
+            }
+            if surfaces {
+                // The exact rule: every differing pixel lies within the snapping bound
+                // of an edge of its two faces, or on their intersection.
+                let (n, first) = unexplained_diffs(&frame, &rf, snapping_bound(spec.subpixel));
+                println!("{label}: unexplained {n} first {first:?}");
+                if n > 0 {
+                    failures.push(format!(
+                        "{label}: {n} face-id differences off every edge (first at {first:?})"
+                    ));
+                }
             }
         }
     }

@@ -139,3 +139,70 @@ pub fn compare_surfaces(frame: &Frame, rf: &RefFrame) -> SurfaceMetrics {
     }
     m
 }
+
+/// The snapping bound at S sub-pixel bits: a vertex snapped to the `2^-S` grid moves
+/// at most `sqrt(2) 2^-(S+1)` px, and so does every edge through it; plus 0.01 px
+/// for the clip points' and the projection's rounding.
+pub fn snapping_bound(subpixel: u32) -> f64 {
+    std::f64::consts::SQRT_2 * 0.5f64.powi(subpixel as i32 + 1) + 0.01
+}
+
+/// The exact rule for face-id differences (issue 24, item 5): a pixel where the
+/// library's face differs from the reference's is unexplained when its centre lies
+/// farther than `bound` (see [`snapping_bound`]) from every edge of the two faces
+/// involved (one where the other side shows none) and is not on their intersection
+/// (their depths at the centre within one pixel's depth change, the larger of the
+/// two faces'). Snapping moves edges by at most the bound, so an exact engine has
+/// none; a frame shifted by one pixel has thousands. Returns the count and the
+/// first such pixel.
+pub fn unexplained_diffs(
+    frame: &Frame,
+    rf: &RefFrame,
+    bound: f64,
+) -> (usize, Option<(usize, usize)>) {
+    let (w, h) = (rf.width, rf.height);
+    let (mut count, mut first) = (0, None);
+    let n = rf.faces.len();
+    for j in 0..h {
+        for i in 0..w {
+            let k = j * w + i;
+            let (lib, r) = (frame.ids[k], rf.ids[k]);
+            if lib == r {
+                continue;
+            }
+            let faces: Vec<usize> = [lib, r]
+                .iter()
+                .filter(|&&id| id != 0)
+                .map(|&id| id as usize - 1)
+                .collect();
+            let c = (i as f64 + 0.5, j as f64 + 0.5);
+            let near_edge = faces.iter().any(|&f| {
+                f < n && {
+                    let s = &rf.faces[f].screen;
+                    (0..s.len())
+                        .any(|e| distance_to_segment(c, s[e], s[(e + 1) % s.len()]) <= bound)
+                }
+            });
+            let on_intersection = faces.len() == 2 && faces.iter().all(|&f| f < n) && {
+                let depth = |f: usize, x: f64, y: f64| rf.face_depth(f, x, y);
+                let (f, g) = (faces[0], faces[1]);
+                match (depth(f, c.0, c.1), depth(g, c.0, c.1)) {
+                    (Some(df), Some(dg)) => {
+                        let change = |f: usize, d: f64| {
+                            let dx = depth(f, c.0 + 1.0, c.1).map_or(0.0, |e| (e - d).abs());
+                            let dy = depth(f, c.0, c.1 + 1.0).map_or(0.0, |e| (e - d).abs());
+                            dx.max(dy)
+                        };
+                        (df - dg).abs() <= change(f, df).max(change(g, dg))
+                    }
+                    _ => false,
+                }
+            };
+            if !near_edge && !on_intersection {
+                count += 1;
+                first.get_or_insert((i, j));
+            }
+        }
+    }
+    (count, first)
+}
