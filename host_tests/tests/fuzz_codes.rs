@@ -244,25 +244,70 @@ fn gf2_bases_and_hamming_codes() {
 fn found_combination_codes_pass_their_check() {
     let t = Instant::now();
     let mut rng = Rng::new(0xC0DE_5000_0003);
-    let mut found = 0;
+    let (mut found, mut narrow, mut proved_none) = (0, 0, 0);
     for case in 0..2000 {
         let surfaces = 1 + rng.below(8) as usize;
         let paths = random_paths(&mut rng, surfaces, false);
         let refs: Vec<&[u16]> = paths.iter().map(Vec::as_slice).collect();
         let graph = OcclusionGraph::new(surfaces, &refs).expect("valid by construction");
         let mut codes = vec![0u128; surfaces];
-        // A width of the surface count always succeeds at once (documented).
-        find_combination_codes::<16>(&graph, surfaces as u32, &mut codes, 1_000_000)
-            .unwrap_or_else(|e| panic!("case {case}: {e:?}: {paths:?}"));
-        assert_eq!(
-            check_combination_codes::<16>(&graph, &codes),
-            Ok(()),
-            "case {case}"
-        );
+        // The narrowest width the search finds, from 1 up: a width of the surface
+        // count always succeeds at once (unit vectors), so only narrower widths make
+        // the search work, and a complete search that finds none is checked by
+        // brute force where that is small.
+        let mut width_found = None;
+        for width in 1..=surfaces as u32 {
+            match find_combination_codes::<16>(&graph, width, &mut codes, 1_000_000) {
+                Ok(()) => {
+                    assert_eq!(
+                        check_combination_codes::<16>(&graph, &codes),
+                        Ok(()),
+                        "case {case} width {width}"
+                    );
+                    width_found = Some(width);
+                    break;
+                }
+                Err(Error::Scheme(SchemeViolation::NoAssignment { .. })) => {
+                    if (width as usize) * surfaces <= 12 {
+                        assert!(
+                            !any_assignment(&graph, width, surfaces),
+                            "case {case}: the search found no {width}-bit codes, but some exist: {paths:?}"
+                        );
+                        proved_none += 1;
+                    }
+                }
+                Err(Error::Scheme(SchemeViolation::SearchGaveUp { .. })) => {}
+                Err(e) => panic!("case {case} width {width}: {e:?}: {paths:?}"),
+            }
+        }
+        let width = width_found.unwrap_or_else(|| panic!("case {case}: no width: {paths:?}"));
+        narrow += usize::from((width as usize) < surfaces);
         found += 1;
     }
     println!(
-        "fuzz combination codes: {found} graphs in {:.2} s",
+        "fuzz combination codes: {found} graphs, {narrow} with codes narrower than their surface count, {proved_none} widths with none checked by brute force, in {:.2} s",
         t.elapsed().as_secs_f64()
     );
+    assert!(
+        narrow * 4 > found,
+        "the search rarely beat the trivial width: {narrow} of {found}"
+    );
+    assert!(
+        proved_none > 100,
+        "too few complete searches checked: {proved_none}"
+    );
+}
+
+/// Whether any `width`-bit codes for the graph's `surfaces` pass the check (every
+/// assignment tried: `2^(width surfaces)` of them).
+fn any_assignment(graph: &OcclusionGraph<'_>, width: u32, surfaces: usize) -> bool {
+    let mask = (1u128 << width) - 1;
+    let total = 1u64 << (width as usize * surfaces);
+    let mut codes = vec![0u128; surfaces];
+    (0..total).any(|n| {
+        for (k, c) in codes.iter_mut().enumerate() {
+            *c = (u128::from(n) >> (k as u32 * width)) & mask;
+        }
+        check_combination_codes::<16>(graph, &codes).is_ok()
+    })
 }
