@@ -59,15 +59,25 @@ pub fn summaries(res: &Results, size: (usize, usize)) -> Vec<Summary> {
         .collect()
 }
 
-/// Points of the plot for `size` (the error is the face-id mismatch %).
-pub fn points(res: &Results, size: (usize, usize)) -> Vec<Point> {
+/// Points of a plot for `size`: the line error (misclassified line pixels plus the
+/// visible and hidden length missing, per 100 line pixels), or with `faces` the
+/// face-id mismatch %.
+pub fn points(res: &Results, size: (usize, usize), faces: bool) -> Vec<Point> {
     summaries(res, size)
         .into_iter()
         .filter_map(|s| {
+            let e = &s.errors;
+            let error = if faces {
+                e.mismatch_pct()
+            } else {
+                100.0 * (e.misclassified as f64 + e.visible_missing + e.hidden_missing)
+                    / (e.line_pixels.max(1)) as f64
+            };
             Some(Point {
                 config: s.config,
                 ir: s.ir? / 1e6,
-                error: s.errors.mismatch_pct(),
+                error,
+                ram: s.max_ram,
             })
         })
         .collect()
@@ -102,7 +112,7 @@ fn sep(n: usize) -> String {
 /// The summary table of one size, with the Pareto front marked.
 pub fn summary_table(res: &Results, size: (usize, usize)) -> String {
     let sums = summaries(res, size);
-    let pts = points(res, size);
+    let pts = points(res, size, false);
     let front: Vec<Config> = pareto(&pts).into_iter().map(|i| pts[i].config).collect();
     let mut s = format!(
         "| settings | scenes | instructions / frame (mean) | working RAM (max) | {ERROR_HEADER} |\n"
