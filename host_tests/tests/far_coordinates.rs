@@ -5,7 +5,7 @@
 //! type"); moved to a local origin in `f64` first (`host_tests::origin`), the scene
 //! is drawn: against the f64 reference, no holes, and the fast engine (the
 //! default) within its accuracy limits, the ground drawn to its clipped horizon and
-//! the boxes in their depth order.
+//! the boxes in their depth order, the boxes' bottom edges on the ground visible.
 
 use host_tests::frame::{CameraSpec, EngineSpec, MeshData, ModeSpec, ProjectionSpec, RenderSpec};
 use host_tests::metrics::{compare_lines, compare_surfaces};
@@ -89,12 +89,12 @@ fn boxes_far_from_the_origin_on_a_ground_reaching_1e9() {
             l.misclassified, l.line_pixels, l.visible_missing, l.visible_len, l.hidden_missing,
             l.hidden_len, l.first_misclassified
         );
-        // Measured (2026-11-26): the second box's bottom edge lies on the ground, a
-        // tie between the line and the face under it, and the fast engine's 16-bit
-        // depth over near..far (0.1 to 1000: the ground's cut corners reach both)
-        // hides 7 of its pixels; bounded at what it is, above the 0.5 % limit.
-        assert!(l.misclassified_fraction() <= 0.025, "{what}");
-        assert!(l.visible_missing <= 0.02 * l.visible_len, "{what}");
+        // The second box's bottom edge lies on the ground: the ground is nearest at
+        // the pixel centres below it, and was taken as hiding 7 (far 1000) and 10
+        // (far 1e10) of its pixels until the line test compared the ground's plane
+        // at the edge point itself (2026-11-26): within issue 23's limits now.
+        assert!(l.misclassified_fraction() <= 0.005, "{what}");
+        assert!(l.visible_missing <= 0.01 * l.visible_len, "{what}");
         assert!(l.hidden_missing <= 0.01 * l.hidden_len, "{what}");
     }
 }

@@ -40,9 +40,12 @@ impl<const N: usize> ActiveFacets<N> {
     }
 
     /// Makes active, in face order, the facet that `build` writes into a free
-    /// slot (`false`: there is none). Returns its steepest slope (0 when none);
-    /// `CapacityExceeded` when `N` are active.
-    pub fn push_with(&mut self, build: impl FnOnce(&mut Facet) -> bool) -> Result<u16, Error> {
+    /// slot (`false`: there is none). Returns its steepest slope and its slot
+    /// (`None` when none was made); `CapacityExceeded` when `N` are active.
+    pub fn push_with(
+        &mut self,
+        build: impl FnOnce(&mut Facet) -> bool,
+    ) -> Result<(u16, Option<u16>), Error> {
         let full = Error::CapacityExceeded {
             needed: N + 1,
             capacity: N,
@@ -55,12 +58,12 @@ impl<const N: usize> ActiveFacets<N> {
             }
         };
         let Some(facet) = self.slots.get_mut(usize::from(slot)) else {
-            return Ok(0);
+            return Ok((0, None));
         };
         if !build(facet) {
             // Room: the slot was taken from the free ones or is new.
             let _ = self.free.push(slot);
-            return Ok(0);
+            return Ok((0, None));
         }
         let (face, slope) = (u32::from(facet.face()), facet.slope());
         let key = face << 16 | u32::from(slot);
@@ -71,7 +74,25 @@ impl<const N: usize> ActiveFacets<N> {
             core::mem::swap(k, &mut carry);
         }
         self.order.push(carry).map_err(|_| full)?;
-        Ok(slope)
+        Ok((slope, Some(slot)))
+    }
+
+    /// The depth gradient of the facet in `slot` when it belongs to `face` and has
+    /// one plane. (A facet that ended in this row's fill keeps its record until
+    /// the next row's activations.)
+    pub fn gradient(&self, slot: u16, face: u16) -> Option<(i32, i32)> {
+        let facet = self.slots.get(usize::from(slot))?;
+        if facet.face() != face {
+            return None;
+        }
+        facet.gradient()
+    }
+
+    /// The steepest slope of the facet in `slot` (see [`Facet::slope`]).
+    pub fn slope(&self, slot: u16) -> u16 {
+        self.slots
+            .get(usize::from(slot))
+            .map_or(u16::MAX, Facet::slope)
     }
 
     /// Fills row `y` of `row` with every active facet's span(s), in face order,

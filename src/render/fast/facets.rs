@@ -314,6 +314,11 @@ impl Facet {
         self.face
     }
 
+    /// Its depth change a pixel right and a row down (16.16) when it has one plane.
+    pub fn gradient(&self) -> Option<(i32, i32)> {
+        (!self.split).then_some((self.a, self.b))
+    }
+
     /// True when both chains and the layout hold row `y`: the fast path.
     #[inline(always)]
     pub fn holds(&self, y: i32) -> bool {

@@ -125,9 +125,13 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                         Beside::Covers
                     }
                 };
+                let faces = Slopes {
+                    entries: slopes,
+                    facets: &self.facets,
+                };
                 let mut i = 0;
                 while let Some(line) = self.lines.get_mut(i) {
-                    if line.row(yi, s, test, row, slopes, &beside, visible, hidden) {
+                    if line.row(yi, s, test, row, &faces, &beside, visible, hidden) {
                         i += 1;
                     } else {
                         // Panics only for i >= len, and `get_mut(i)` just found it:
@@ -415,10 +419,10 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         let corners = Corners::Pool {
             start: pool_used as u16,
         };
-        let slope = self
+        let made = self
             .facets
             .push_with(|out| facet(out, &poly, f, corners, y, map.s, false))?;
-        set_slope(slopes, f, slope);
+        set_slope(slopes, f, made);
         Ok(end)
     }
 
@@ -434,27 +438,27 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         s: u32,
         slopes: &mut [u16],
     ) -> Result<(), Error> {
-        let mut slope = 0;
-        if bent && pts.len() == 4 && convex(pts) {
+        let made = if bent && pts.len() == 4 && convex(pts) {
             // One facet, split at its diagonal: the same pixels as its fan.
-            slope = self
-                .facets
-                .push_with(|out| facet(out, pts, f, Corners::Face, y, s, true))?;
+            self.facets
+                .push_with(|out| facet(out, pts, f, Corners::Face, y, s, true))?
         } else if bent && !folds(pts) {
+            let mut slope = 0;
             for k in 1..pts.len().saturating_sub(1) {
                 let tri = [0, k, k + 1].map(|i| pts.get(i).copied().unwrap_or_default());
                 let fan = Corners::Fan(k as u8);
-                let one = self
+                let (one, _) = self
                     .facets
                     .push_with(|out| facet(out, &tri, f, fan, y, s, false))?;
                 slope = slope.max(one);
             }
+            // Several planes: the line test takes the steepest slope.
+            (slope, None)
         } else {
-            slope = self
-                .facets
-                .push_with(|out| facet(out, pts, f, Corners::Face, y, s, false))?;
-        }
-        set_slope(slopes, f, slope);
+            self.facets
+                .push_with(|out| facet(out, pts, f, Corners::Face, y, s, false))?
+        };
+        set_slope(slopes, f, made);
         Ok(())
     }
 
@@ -500,9 +504,47 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
     }
 }
 
-fn set_slope(slopes: &mut [u16], f: u16, slope: u16) {
+/// A `slopes` entry with this bit holds the slot of the face's one facet (whose
+/// record the line test reads in the same row), else the steepest slope of its
+/// facets (saturated below the bit).
+const SLOT: u16 = 0x8000;
+
+/// Records for the line test the face's facet slot (a facet of one plane) or its
+/// steepest slope.
+fn set_slope(slopes: &mut [u16], f: u16, (slope, slot): (u16, Option<u16>)) {
     if let Some(s) = slopes.get_mut(usize::from(f)) {
-        *s = slope;
+        *s = match slot {
+            Some(slot) if slot < SLOT => SLOT | slot,
+            _ => slope.min(SLOT - 1),
+        };
+    }
+}
+
+/// The line test's view of the faces: `slopes` entries and the active facets.
+struct Slopes<'a, const N: usize> {
+    entries: &'a [u16],
+    facets: &'a ActiveFacets<N>,
+}
+
+impl<const N: usize> FaceSlopes for Slopes<'_, N> {
+    #[inline(always)]
+    fn gradient(&self, face: u16) -> Option<(i32, i32)> {
+        let entry = self.entries.get(usize::from(face)).copied().unwrap_or(0);
+        if entry & SLOT == 0 {
+            return None;
+        }
+        self.facets.gradient(entry & !SLOT, face)
+    }
+
+    #[inline(always)]
+    fn slope(&self, face: u16) -> u16 {
+        let entry = self.entries.get(usize::from(face)).copied().unwrap_or(0);
+        if entry & SLOT == 0 {
+            entry
+        } else {
+            // The face's one facet (split in two planes at its diagonal).
+            self.facets.slope(entry & !SLOT)
+        }
     }
 }
 

@@ -38,6 +38,15 @@ pub(super) struct ActiveLine {
     apart: u16,
 }
 
+/// What the line test knows of the face nearest at a pixel.
+pub(super) trait FaceSlopes {
+    /// The face's depth change a pixel right and a row down (16.16), when it is
+    /// drawn this row as one plane.
+    fn gradient(&self, face: u16) -> Option<(i32, i32)>;
+    /// The face's steepest depth change a pixel, in whole depth units.
+    fn slope(&self, face: u16) -> u16;
+}
+
 /// A face nearer than a line's pixel, seen from the line's ends.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) enum Beside {
@@ -132,7 +141,7 @@ impl ActiveLine {
         s: u32,
         test: LineTest,
         row: &[u32],
-        slopes: &[u16],
+        slopes: &impl FaceSlopes,
         beside: &impl Fn(u16, &[(i16, i16); 2], (i32, i32)) -> Beside,
         visible: &mut [u32],
         hidden: &mut [u32],
@@ -218,7 +227,7 @@ impl ActiveLine {
         d: u32,
         s: u32,
         test: LineTest,
-        slopes: &[u16],
+        slopes: &impl FaceSlopes,
         beside: &impl Fn(u16, &[(i16, i16); 2], (i32, i32)) -> Beside,
         visible: &mut [u32],
         hidden: &mut [u32],
@@ -250,7 +259,7 @@ impl ActiveLine {
         k: i32,
         q: i32,
         s: u32,
-        slopes: &[u16],
+        slopes: &impl FaceSlopes,
         beside: &impl Fn(u16, &[(i16, i16); 2], (i32, i32)) -> Beside,
     ) -> bool {
         let id = cell as u16;
@@ -258,10 +267,25 @@ impl ActiveLine {
             return false;
         }
         let face = 0xFFFF - id;
-        let slope = u32::from(slopes.get(usize::from(face)).copied().unwrap_or(0));
-        let margin = self.bias.saturating_add((SLOPE_MARGIN * slope) << 14);
-        if cell & 0xFFFF_0000 <= d.saturating_add(margin) {
-            return false;
+        if let Some((a, b)) = slopes.gradient(face) {
+            // One plane: its depth at the edge point itself, from the pixel centre's
+            // (the middle of the stored unit) and the offset between them along the
+            // minor axis, against the line's depth there ("strictly nearer").
+            let h = 1i32 << s;
+            let off = q - (((q >> (s + 1)) << 1) + 1) * h;
+            let grad = if self.x_major { b } else { a };
+            let at = i64::from(cell & 0xFFFF_0000)
+                + 0x8000
+                + ((i64::from(grad) * i64::from(off)) >> (s + 1));
+            if at <= i64::from(d) + i64::from(self.bias) {
+                return false;
+            }
+        } else {
+            let slope = u32::from(slopes.slope(face));
+            let margin = self.bias.saturating_add((SLOPE_MARGIN * slope) << 14);
+            if cell & 0xFFFF_0000 <= d.saturating_add(margin) {
+                return false;
+            }
         }
         // Most hidden pixels are behind a face that does not touch the line's ends:
         // the last face found so is kept.

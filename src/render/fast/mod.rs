@@ -27,10 +27,13 @@
 //!   its top end with a slope rounded to `2^-16` px (set up in `f32`), within about
 //!   `2^-11` px of the exact crossing; every face that shares the edge steps the
 //!   same integers, so fills stay watertight.
-//! - **A line pixel is tested at its pixel centre** against the face nearest
-//!   there, not at the edge point; the edge's own two faces never hide it, and
+//! - **A line pixel is tested against the face nearest at its pixel centre**, not
+//!   the face over the edge point; the edge's own two faces never hide it, and
 //!   another face hides it only when nearer by more than one pixel of the line's
-//!   own depth slope plus one depth unit (instead of "strictly nearer").
+//!   own depth slope plus one depth unit (instead of "strictly nearer"): nearer at
+//!   the edge point itself when the face is drawn as one plane (its depth moved
+//!   there from the centre along its plane), at the centre by a further quarter
+//!   pixel of its steepest slope when it is drawn as several.
 //!   A non-manifold edge's third and later faces are not its own here.
 //! - **A bent face** (not planar, [`Mesh::with_planar_faces`]) is drawn as its fan
 //!   triangles, each with its own plane (their union is the polygon's even-odd
@@ -71,7 +74,7 @@ use crate::{Error, SpanSink, Viewport};
 use active::ActiveFacets;
 use clip::{clip_polygon, clip_segment};
 use facets::{clear_row, facet, ClipPolygon, CornerSource, Corners, Facet};
-use lines::{ActiveLine, Beside, LineTest};
+use lines::{ActiveLine, Beside, FaceSlopes, LineTest};
 use row_out::{emit_row, Shades};
 use view::{guard_px, ScreenMap};
 
