@@ -19,10 +19,12 @@ use host_tests::report::load_scene;
 /// Each is a few pixels: a line pixel tested at its centre beside a sliver, one face
 /// pixel at a 16-bit tie. Anything else over the limits fails. (Teapot 400x240 was
 /// 0.579 % before -0.0 welded with 0.0 (2026-11-26): its seams' false lines went from
-/// both frames, fewer line pixels, 0.666 % since; 0.588 % since a face drawn as
-/// one plane is compared with the line at the edge point, not the pixel centre.)
+/// both frames, fewer line pixels, 0.666 % since; 0.588 % once a face drawn as one
+/// plane was compared with the line at the edge point, not the pixel centre; 0.431 %,
+/// within the limit, once a steep line beside an empty column was taken as an
+/// outline there: its misclassified share is held to the limit, its far pixel to 1.)
 const OVER: [(&str, (usize, usize), usize, f64); 3] = [
-    ("teapot", (400, 240), 1, 0.6),
+    ("teapot", (400, 240), 1, 0.0),
     ("icosphere", (128, 64), 0, 0.7),
     ("suzanne", (128, 64), 1, 0.0),
 ];

@@ -238,7 +238,7 @@ impl ActiveLine {
         // Most pixels are in front of the face there: one compare.
         let hide = test == LineTest::Row
             && cell & 0xFFFF_0000 > d.saturating_add(self.bias)
-            && self.hidden_by(cell, d, k, q, s, slopes, beside);
+            && self.hidden_by(cell, x, row, d, k, q, s, slopes, beside);
         let mask = if hide { hidden } else { visible };
         let x = x as usize;
         if let Some(w) = mask.get_mut(x / 32) {
@@ -255,6 +255,8 @@ impl ActiveLine {
     fn hidden_by(
         &mut self,
         cell: u32,
+        x: i32,
+        row: &[u32],
         d: u32,
         k: i32,
         q: i32,
@@ -267,29 +269,51 @@ impl ActiveLine {
             return false;
         }
         let face = 0xFFFF - id;
+        if !self.nearer_at_edge(cell, d, q, s, slopes) {
+            return false;
+        }
+        // A steep line's edge point lies between its pixel's centre and the next
+        // column's, in the same row: when that column shows no face, the line is an
+        // outline there and the face at the centre ends before the edge point (a
+        // silhouette seen beside the next face of a convex surface): not hidden.
+        if !self.x_major {
+            let h = 1i32 << s;
+            let off = q - (((q >> (s + 1)) << 1) + 1) * h;
+            if off != 0 {
+                let next = row.get((x + off.signum()) as usize).copied().unwrap_or(0);
+                if next == 0 {
+                    return false;
+                }
+            }
+        }
+        // Most hidden pixels are behind a face that does not touch the line's ends:
+        // the last face found so is kept.
+        face == self.apart || self.hides_near_ends(face, k, q, s, beside)
+    }
+
+    /// Is the face of row entry `cell` nearer than the line (depth `d` at the edge
+    /// point with minor coordinate `q`) by more than the line's bias: at the edge
+    /// point itself for a face drawn as one plane (its depth moved there from the
+    /// pixel centre along its plane), at the centre by a share of its steepest
+    /// slope more for one drawn as several?
+    #[inline(always)]
+    fn nearer_at_edge(&self, cell: u32, d: u32, q: i32, s: u32, slopes: &impl FaceSlopes) -> bool {
+        let face = 0xFFFF - cell as u16;
         if let Some((a, b)) = slopes.gradient(face) {
-            // One plane: its depth at the edge point itself, from the pixel centre's
-            // (the middle of the stored unit) and the offset between them along the
-            // minor axis, against the line's depth there ("strictly nearer").
+            // The middle of the stored unit at the centre, moved along the minor
+            // axis to the edge point.
             let h = 1i32 << s;
             let off = q - (((q >> (s + 1)) << 1) + 1) * h;
             let grad = if self.x_major { b } else { a };
             let at = i64::from(cell & 0xFFFF_0000)
                 + 0x8000
                 + ((i64::from(grad) * i64::from(off)) >> (s + 1));
-            if at <= i64::from(d) + i64::from(self.bias) {
-                return false;
-            }
+            at > i64::from(d) + i64::from(self.bias)
         } else {
             let slope = u32::from(slopes.slope(face));
             let margin = self.bias.saturating_add((SLOPE_MARGIN * slope) << 14);
-            if cell & 0xFFFF_0000 <= d.saturating_add(margin) {
-                return false;
-            }
+            cell & 0xFFFF_0000 > d.saturating_add(margin)
         }
-        // Most hidden pixels are behind a face that does not touch the line's ends:
-        // the last face found so is kept.
-        face == self.apart || self.hides_near_ends(face, k, q, s, beside)
     }
 
     /// [`hidden_by`](Self::hidden_by) for a face not known to be apart from the

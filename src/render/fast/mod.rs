@@ -33,7 +33,9 @@
 //!   own depth slope plus one depth unit (instead of "strictly nearer"): nearer at
 //!   the edge point itself when the face is drawn as one plane (its depth moved
 //!   there from the centre along its plane), at the centre by a further quarter
-//!   pixel of its steepest slope when it is drawn as several.
+//!   pixel of its steepest slope when it is drawn as several. A steep line whose
+//!   next column toward the edge point shows no face is an outline there, never
+//!   hidden.
 //!   A non-manifold edge's third and later faces are not its own here.
 //! - **A bent face** (not planar, [`Mesh::with_planar_faces`]) is drawn as its fan
 //!   triangles, each with its own plane (their union is the polygon's even-odd
