@@ -28,10 +28,15 @@ impl<const N: usize> ActiveFacets<N> {
     }
 
     /// Forgets every facet.
+    /// The slots stay, all free: making a 100-byte placeholder for each new slot
+    /// again every frame cost suzanne's frame about 1 %.
     pub fn clear(&mut self) {
-        self.slots.clear();
         self.order.clear();
         self.free.clear();
+        for slot in (0..self.slots.len()).rev() {
+            // Room: one entry a slot.
+            let _ = self.free.push(slot as u16);
+        }
     }
 
     /// Facets active.

@@ -26,10 +26,12 @@ pub const MAX_CORNERS: usize = 64;
 /// coplanar faces get planes through different snapped corners, each up to
 /// `2^-(S+1)` px from its exact place, so their depths differ by up to about a
 /// sixteenth of a pixel's depth change (at S = 4), plus rounding: the tie is one
-/// depth unit plus `(|a| + |b|) / 16`.
+/// depth unit plus `(|a| + |b|) / 16`, rounded up to whole depth units (so that
+/// the pixel loop makes the stored entry from the compared one with one add).
 fn tie(a: i32, b: i32) -> u32 {
     let slope = (a.unsigned_abs() >> 4).saturating_add(b.unsigned_abs() >> 4);
-    (1u32 << 16).saturating_add(slope).min(MAX_TIE)
+    let units = (1u32 << 16).saturating_add(slope).saturating_add(0xFFFF) & 0xFFFF_0000;
+    units.min(MAX_TIE)
 }
 
 /// The largest tie, 128 depth units: half the margin kept free below and above
@@ -541,14 +543,29 @@ impl Facet {
 /// pixel only when nearer by more than its `tie`, and one compare a pixel does it.
 #[inline(always)]
 fn depth_span(cells: &mut [u32], d: u32, a: u32, id: u32, tie: u32) {
-    // Depths lie in 2^24..2^32 - 2^24 and the tie below 2^23: no wrap.
-    let (mut d, mut behind) = (d, d.wrapping_sub(tie));
-    for cell in cells {
-        if (behind & 0xFFFF_0000) | id > *cell {
-            *cell = (d & 0xFFFF_0000) | id;
+    // Depths lie in 2^24..2^32 - 2^24 and the tie below 2^23: no wrap. The tie is
+    // whole depth units, so `(d & 0xFFFF_0000) | id` is the compared entry plus
+    // the tie.
+    let mut behind = d.wrapping_sub(tie);
+    let mut pairs = cells.chunks_exact_mut(2);
+    for pair in &mut pairs {
+        if let [c0, c1] = pair {
+            let e0 = (behind & 0xFFFF_0000) | id;
+            let e1 = (behind.wrapping_add(a) & 0xFFFF_0000) | id;
+            if e0 > *c0 {
+                *c0 = e0.wrapping_add(tie);
+            }
+            if e1 > *c1 {
+                *c1 = e1.wrapping_add(tie);
+            }
+            behind = behind.wrapping_add(a.wrapping_mul(2));
         }
-        d = d.wrapping_add(a);
-        behind = behind.wrapping_add(a);
+    }
+    if let [c] = pairs.into_remainder() {
+        let e = (behind & 0xFFFF_0000) | id;
+        if e > *c {
+            *c = e.wrapping_add(tie);
+        }
     }
 }
 
