@@ -163,6 +163,9 @@ pub enum EdgeProblem {
     /// two different faces named, or a kind other than boundary; two or more faces
     /// not ascending; boundary or non-manifold with another count.
     FacesDisagree,
+    /// A hole label on an edge that is not a boundary edge, at or above
+    /// `MAX_HOLES`, or on some boundary edges and not on others.
+    HoleLabel,
 }
 
 impl Error<Infallible> {

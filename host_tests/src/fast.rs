@@ -3,7 +3,11 @@
 //! with its lent storage sized for the mesh and the frame.
 
 use fixed::types::extra::LeEqU32;
-use pbuffer::render::{BakedMesh, CompactEdge, FacePlane, FastRenderer, FastVertex, FastWorkspace};
+use std::cell::Cell;
+
+use pbuffer::render::{
+    BakedMesh, CompactEdge, FacePlane, FastRenderer, FastVertex, FastWorkspace, NO_HOLE,
+};
 use pbuffer::MonoPalette;
 
 use crate::frame::{CameraSpec, Frame, MeshData, RenderSpec};
@@ -12,6 +16,21 @@ use crate::setup::{Measured, Scene, SceneStorage};
 /// Active facets and lines the host engine has room for.
 pub const FACETS: usize = 4096;
 pub const LINES: usize = 4096;
+
+thread_local! {
+    /// Set by [`with_every_back_face`]: the baked holes' labels are dropped.
+    static EVERY_BACK_FACE: Cell<bool> = const { Cell::new(false) };
+}
+
+/// Runs `f` with the fast engine drawing every back face (its mesh baked
+/// without hole labels), on this thread: to check that skipping the back faces
+/// away from the holes changes no pixel.
+pub fn with_every_back_face<T>(f: impl FnOnce() -> T) -> T {
+    EVERY_BACK_FACE.with(|c| c.set(true));
+    let out = f();
+    EVERY_BACK_FACE.with(|c| c.set(false));
+    out
+}
 
 /// The fast engine's per-mesh constants, owned.
 pub struct Baked {
@@ -92,7 +111,12 @@ pub(crate) fn render_fast<Frac: LeEqU32>(
 ) -> Result<Frame, String> {
     let mut storage = SceneStorage::new(data);
     let scene = storage.scene(cam, spec)?;
-    let baked = Baked::new(&scene)?;
+    let mut baked = Baked::new(&scene)?;
+    if EVERY_BACK_FACE.with(Cell::get) {
+        for e in &mut baked.edges {
+            e.hole = NO_HOLE;
+        }
+    }
     let mesh = BakedMesh::new(scene.mesh, &baked.planes, &baked.edges)
         .map_err(|e| format!("baked mesh: {e}"))?;
     let (w, h) = (spec.width, spec.height);

@@ -73,9 +73,11 @@ fn fast_engine_is_within_the_accuracy_limits_on_every_scene() {
                 fail(format!("{} holes", e.holes));
             }
             // Measured (2026-11-26): none but 7 on suzanne at 400x240 (bent faces, one
-            // plane per fan triangle in 16-bit depth, where they meet others).
+            // plane per fan triangle in 16-bit depth, where they meet others); 3 once
+            // back faces away from the holes were skipped (a back face of lower index
+            // won some of those ties).
             let off_edge_most = if (name, size) == ("suzanne", (400, 240)) {
-                7
+                3
             } else {
                 0
             };

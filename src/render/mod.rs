@@ -38,7 +38,7 @@ pub use codefill::{CodeFillRenderer, CodeWorkspace, DepthOrder, RowCodes, Visibi
 pub use compose::{FrameProbe, MonoPalette, Palette, SolidPalette};
 pub use fast::{
     BakedMesh, BakedSource, CompactEdge, FacePlane, FastRenderer, FastVertex, FastWorkspace,
-    FAST_MAX_SUBPIXEL_BITS, MAX_CORNERS, MAX_FAST_FACES,
+    FAST_MAX_SUBPIXEL_BITS, MAX_CHECKED_FACES, MAX_CORNERS, MAX_FAST_FACES, MAX_HOLES, NO_HOLE,
 };
 pub use idpass::IdWorkspace;
 pub use painter::{PaintOrder, PainterRenderer};

@@ -5,6 +5,7 @@
 
 use core::fmt;
 
+use super::holes::{label_holes, MAX_HOLES, NO_HOLE};
 use crate::mesh::{EdgeAdjacency, EdgeKind, Mesh};
 use crate::{EdgeProblem, Error};
 
@@ -38,6 +39,10 @@ pub struct CompactEdge {
     pub faces: [u16; 2],
     /// What the edge is.
     pub kind: EdgeKind,
+    /// A boundary edge's hole (its loop, below [`MAX_HOLES`]) when the host found
+    /// the mesh with its holes capped nowhere inside-out, so that back faces away
+    /// from the holes can be skipped; else [`NO_HOLE`].
+    pub hole: u8,
 }
 
 impl CompactEdge {
@@ -47,6 +52,7 @@ impl CompactEdge {
         b: 0,
         faces: [0; 2],
         kind: EdgeKind::Inert,
+        hole: NO_HOLE,
     };
 }
 
@@ -67,7 +73,11 @@ pub struct BakedMesh<'a> {
 
 impl<'a> BakedMesh<'a> {
     /// Writes the per-mesh constants of `mesh` (whose edge list is `adjacency`) into
-    /// `planes` (one per face) and `edges` (one per edge of `adjacency`). Run on the
+    /// `planes` (one per face) and `edges` (one per edge of `adjacency`), with the
+    /// boundary edges labelled by hole when the mesh with its holes capped is
+    /// nowhere inside-out (checked along rays from both sides of every face; the
+    /// cost grows with faces squared, so meshes of up to
+    /// [`MAX_CHECKED_FACES`](super::MAX_CHECKED_FACES) faces are checked). Run on the
     /// host, in a `build.rs`; [`BakedSource`] prints the result as Rust statics.
     /// Too small a buffer is `CapacityExceeded`; more than [`MAX_FAST_FACES`] faces or
     /// vertices is `TooManyFaces`.
@@ -95,15 +105,21 @@ impl<'a> BakedMesh<'a> {
                 b: e.b as u16,
                 faces: [e.faces[0] as u16, e.faces[1] as u16],
                 kind: e.kind,
+                hole: NO_HOLE,
             };
+        }
+        if let Some(baked) = edges.get_mut(..all.len()) {
+            label_holes(mesh, baked);
         }
         Ok(())
     }
 
     /// The baked mesh, checked in one pass: one plane per face, equal bit for bit to
     /// the face's normal and centroid; every edge's ends and faces in range, `a < b`,
-    /// and a kind that agrees with its faces (else `BadEdgeList`). `closed` is whether
-    /// every edge has two faces (for `Cull::Auto`).
+    /// and a kind that agrees with its faces, and a hole label on boundary edges
+    /// only, below [`MAX_HOLES`], on all of them or none (else `BadEdgeList`).
+    /// `closed` is whether every edge has two faces (for `Cull::Auto`). That the
+    /// capped surface is nowhere inside-out is the host's check, not redone here.
     pub fn new(
         mesh: Mesh<'a>,
         planes: &'a [FacePlane],
@@ -124,6 +140,11 @@ impl<'a> BakedMesh<'a> {
         }
         let vertices = mesh.vertices().len();
         let mut closed = true;
+        // Either every boundary edge names its hole or none does.
+        let holes_labelled = edges
+            .iter()
+            .find(|e| e.kind == EdgeKind::Boundary)
+            .is_some_and(|e| e.hole != NO_HOLE);
         for (i, e) in edges.iter().enumerate() {
             let bad = |problem| Err(Error::BadEdgeList { edge: i, problem });
             if usize::from(e.b) >= vertices {
@@ -140,6 +161,12 @@ impl<'a> BakedMesh<'a> {
                 return bad(EdgeProblem::FacesDisagree);
             }
             closed &= e.kind != EdgeKind::Boundary && e.kind != EdgeKind::NonManifold;
+            let labelled = e.hole != NO_HOLE;
+            if usize::from(e.hole) >= MAX_HOLES && labelled
+                || labelled != (e.kind == EdgeKind::Boundary && holes_labelled)
+            {
+                return bad(EdgeProblem::HoleLabel);
+            }
         }
         Ok(Self {
             mesh,
@@ -233,8 +260,8 @@ impl fmt::Display for BakedSource<'_> {
         for e in self.edges {
             writeln!(
                 out,
-                "    pbuffer::render::CompactEdge {{ a: {}, b: {}, faces: {:?}, kind: pbuffer::mesh::EdgeKind::{:?} }},",
-                e.a, e.b, e.faces, e.kind
+                "    pbuffer::render::CompactEdge {{ a: {}, b: {}, faces: {:?}, kind: pbuffer::mesh::EdgeKind::{:?}, hole: {} }},",
+                e.a, e.b, e.faces, e.kind, e.hole
             )?;
         }
         writeln!(out, "];")

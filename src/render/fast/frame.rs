@@ -227,6 +227,12 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             feature_edges: 0,
         };
         let depth = settings.mode.needs_depth();
+        // Back faces that no ray reaches are skipped (see `holes`).
+        let holes = if cull {
+            None
+        } else {
+            HoleBoxes::new(baked.edges(), ws.vertices, s)
+        };
         for (f, plane) in baked.planes().iter().enumerate() {
             let facing = faces_view(plane, &map.viewpoint);
             set_bit(ws.facing, f, facing);
@@ -242,6 +248,15 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                 let (x, y) = p.half();
                 (lo, hi) = (lo.min(y), hi.max(y));
                 (left, right) = (left.min(x), right.max(x));
+            }
+            if let Some(holes) = &holes {
+                // Every vertex is inside when there are boxes: none clipped.
+                if !facing
+                    && turns_away(mesh.face(f), ws.vertices)
+                    && !holes.meets(left, right, lo, hi)
+                {
+                    continue;
+                }
             }
             let first = if clipped {
                 0
@@ -620,6 +635,22 @@ fn turn(o: FastVertex, p: FastVertex, q: FastVertex) -> i64 {
         i32::from(q.y) - i32::from(o.y),
     );
     i64::from(ax) * i64::from(by) - i64::from(bx) * i64::from(ay)
+}
+
+/// Does every fan triangle `(c0, ck, ck+1)` of the face with cached corners
+/// `corners` turn the way a back face turns on screen (clockwise with y up),
+/// none edge-on? A bent face whose Newell normal faces away may still have a fan
+/// triangle that faces the eye: that one is front surface.
+fn turns_away(corners: &[u32], cache: &[FastVertex]) -> bool {
+    let at = |v: &u32| cache.get(*v as usize).copied().unwrap_or_default();
+    let Some(p0) = corners.first().map(at) else {
+        return false;
+    };
+    corners
+        .get(1..)
+        .unwrap_or(&[])
+        .windows(2)
+        .all(|w| matches!(w, [p, q] if turn(p0, at(p), at(q)) > 0))
 }
 
 /// Does the fan of `pts` fold over on screen: do its triangles `(p0, pk, pk+1)` not

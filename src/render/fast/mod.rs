@@ -4,7 +4,8 @@
 //! centroids and the compact edge list, kept in flash. Per frame: an `f32`
 //! transform of each vertex into an 8-byte cache entry (16-bit screen x, y with S
 //! sub-pixel bits, and a depth scaled to the depth range the frame draws); facing
-//! bits; faces and feature lines linked into per-row lists. Per row: each active
+//! bits; faces and feature lines linked into per-row lists (back faces that no ray
+//! reaches, away from an open mesh's holes, left out: see `holes`). Per row: each active
 //! facet (a face; a bent convex quad split at its diagonal, one plane a side; or a
 //! fan triangle of another bent face), in the order of its face index, fills its
 //! span into one row of `u32`s, `depth << 16 | (0xFFFF - face)`, with one
@@ -53,6 +54,7 @@ mod active;
 mod baked;
 mod clip;
 mod facets;
+mod holes;
 mod lines;
 mod row_out;
 mod step;
@@ -66,6 +68,7 @@ use heapless::Vec;
 
 pub use baked::{BakedMesh, BakedSource, CompactEdge, FacePlane, MAX_FAST_FACES};
 pub use facets::MAX_CORNERS;
+pub use holes::{MAX_CHECKED_FACES, MAX_HOLES, NO_HOLE};
 pub use view::FastVertex;
 
 use super::compose::{FrameProbe, Palette};
@@ -76,6 +79,7 @@ use crate::{Error, SpanSink, Viewport};
 use active::ActiveFacets;
 use clip::{clip_polygon, clip_segment};
 use facets::{clear_row, facet, ClipPolygon, CornerSource, Corners, Facet};
+use holes::HoleBoxes;
 use lines::{ActiveLine, Beside, FaceSlopes, LineTest};
 use row_out::{emit_row, Shades};
 use view::{guard_px, ScreenMap};
