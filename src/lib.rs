@@ -49,6 +49,7 @@ pub mod render;
 pub mod scan;
 mod sort;
 mod span;
+mod vector;
 
 pub use camera::{Camera, Projection};
 pub use codefill::XorFiller;

@@ -3,8 +3,8 @@
 use core::ops::Range;
 
 use super::build::need;
-use super::plane::dot;
 use crate::mesh::{Mesh, Viewpoint};
+use crate::vector::dot;
 use crate::Error;
 
 /// "No child" in [`BspNode::front`] and [`BspNode::back`].

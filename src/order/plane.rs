@@ -1,6 +1,7 @@
 //! Planes, vertex classification and the work-stack records of the BSP build (f64).
 
 use crate::mesh::{planar_words, set_bit, Mesh};
+use crate::vector::{add, cross, dot, sub};
 use crate::Error;
 
 /// Where a vertex lies relative to a plane, with the build's tolerance.
@@ -381,24 +382,4 @@ impl<'a> Iterator for Records<'a> {
         self.rest = rest.get(len as usize..)?;
         Some((word, idx))
     }
-}
-
-fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-pub(super) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }

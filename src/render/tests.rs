@@ -27,7 +27,7 @@ impl FrameProbe for Masks {
     }
 }
 
-fn cube() -> (Vec<[f32; 3]>, Vec<u32>, Vec<u32>) {
+pub(super) fn cube() -> (Vec<[f32; 3]>, Vec<u32>, Vec<u32>) {
     let v = vec![
         [-1., -1., -1.],
         [1., -1., -1.],

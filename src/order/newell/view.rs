@@ -3,7 +3,8 @@
 
 use crate::camera::Camera;
 use crate::mesh::Viewpoint;
-use crate::order::plane::{dot, exact_side, Plane, Side};
+use crate::order::plane::{exact_side, Plane, Side};
+use crate::vector::dot;
 
 /// The view, in f64.
 pub(super) struct View {

@@ -28,6 +28,7 @@
 use super::baked::CompactEdge;
 use super::view::FastVertex;
 use crate::mesh::{EdgeKind, Mesh};
+use crate::vector::{cross, sub};
 
 /// The most holes (boundary loops) a mesh may have for back faces to be skipped.
 pub const MAX_HOLES: usize = 16;
@@ -274,18 +275,6 @@ fn winding(mesh: &Mesh<'_>, edges: &[CompactEdge], x: [f64; 3], scale: f64) -> O
         return Some(w);
     }
     None
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }
 
 /// Twice the signed area of `a b p` in xy: positive counter-clockwise.

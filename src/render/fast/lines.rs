@@ -277,8 +277,7 @@ impl ActiveLine {
         // outline there and the face at the centre ends before the edge point (a
         // silhouette seen beside the next face of a convex surface): not hidden.
         if !self.x_major {
-            let h = 1i32 << s;
-            let off = q - (((q >> (s + 1)) << 1) + 1) * h;
+            let off = edge_offset(q, s);
             if off != 0 {
                 let next = row.get((x + off.signum()) as usize).copied().unwrap_or(0);
                 if next == 0 {
@@ -302,8 +301,7 @@ impl ActiveLine {
         if let Some((a, b)) = slopes.gradient(face) {
             // The middle of the stored unit at the centre, moved along the minor
             // axis to the edge point.
-            let h = 1i32 << s;
-            let off = q - (((q >> (s + 1)) << 1) + 1) * h;
+            let off = edge_offset(q, s);
             let grad = if self.x_major { b } else { a };
             let at = i64::from(cell & 0xFFFF_0000)
                 + 0x8000
@@ -338,4 +336,12 @@ impl ActiveLine {
             Beside::Misses => false,
         }
     }
+}
+
+/// From the centre of the pixel holding minor coordinate `q` to `q` itself, in
+/// half-units (`2^-(S+1)` px). Computed where it is needed (twice for a few
+/// pixels): computing it once up front and passing it cost suzanne's frame 1.5 %.
+#[inline(always)]
+fn edge_offset(q: i32, s: u32) -> i32 {
+    q - (((q >> (s + 1)) << 1) + 1) * (1i32 << s)
 }

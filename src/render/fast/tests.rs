@@ -262,34 +262,14 @@ fn a_steep_line_entering_from_above_keeps_its_columns() {
     }
 }
 
-/// A cube of side 2 about the origin, faces turning counter-clockwise seen from
-/// outside; `top` keeps the face at z = 1 (else it is the box's one hole).
-fn cube_faces(top: bool) -> (Vec<u32>, Vec<u32>) {
-    let mut faces: Vec<[u32; 4]> = vec![
-        [0, 3, 2, 1],
-        [0, 1, 5, 4],
-        [2, 3, 7, 6],
-        [0, 4, 7, 3],
-        [1, 2, 6, 5],
-    ];
-    if top {
-        faces.push([4, 5, 6, 7]);
-    }
-    let indices: Vec<u32> = faces.iter().flatten().copied().collect();
-    let offsets = (0..=faces.len() as u32).map(|f| 4 * f).collect();
-    (indices, offsets)
+/// The render tests' cube (side 2 about the origin, faces counter-clockwise seen
+/// from outside) without its face at z = 1: a box with one hole.
+fn open_box() -> (Vec<[f32; 3]>, Vec<u32>, Vec<u32>) {
+    let (vertices, mut indices, _) = crate::render::tests::cube();
+    // Its second face is the top, [4, 5, 6, 7].
+    indices.drain(4..8);
+    (vertices, indices, (0..=5).map(|f| 4 * f).collect())
 }
-
-const CUBE: [[f32; 3]; 8] = [
-    [-1., -1., -1.],
-    [1., -1., -1.],
-    [1., 1., -1.],
-    [-1., 1., -1.],
-    [-1., -1., 1.],
-    [1., -1., 1.],
-    [1., 1., 1.],
-    [-1., 1., 1.],
-];
 
 /// The labelled edges, as `(a, b, hole)`.
 fn labels(edges: &[CompactEdge]) -> Vec<(u16, u16, u8)> {
@@ -302,8 +282,8 @@ fn labels(edges: &[CompactEdge]) -> Vec<(u16, u16, u8)> {
 
 #[test]
 fn an_open_box_has_its_rim_labelled_as_one_hole() {
-    let (indices, offsets) = cube_faces(false);
-    let mesh = Mesh::new(&CUBE, &indices, &offsets).unwrap();
+    let (vertices, indices, offsets) = open_box();
+    let mesh = Mesh::new(&vertices, &indices, &offsets).unwrap();
     let b = bake(&mesh);
     assert_eq!(
         labels(&b.edges),
@@ -314,21 +294,21 @@ fn an_open_box_has_its_rim_labelled_as_one_hole() {
 
 #[test]
 fn an_inside_out_box_and_a_closed_one_have_no_holes_labelled() {
-    let (mut indices, offsets) = cube_faces(false);
+    let (vertices, mut indices, offsets) = open_box();
     for face in indices.chunks_mut(4) {
         face.reverse();
     }
-    let mesh = Mesh::new(&CUBE, &indices, &offsets).unwrap();
+    let mesh = Mesh::new(&vertices, &indices, &offsets).unwrap();
     assert_eq!(labels(&bake(&mesh).edges), []);
-    let (indices, offsets) = cube_faces(true);
-    let mesh = Mesh::new(&CUBE, &indices, &offsets).unwrap();
+    let (vertices, indices, offsets) = crate::render::tests::cube();
+    let mesh = Mesh::new(&vertices, &indices, &offsets).unwrap();
     assert_eq!(labels(&bake(&mesh).edges), []);
 }
 
 #[test]
 fn hole_labels_on_some_boundary_edges_or_off_them_are_refused() {
-    let (indices, offsets) = cube_faces(false);
-    let mesh = Mesh::new(&CUBE, &indices, &offsets).unwrap();
+    let (vertices, indices, offsets) = open_box();
+    let mesh = Mesh::new(&vertices, &indices, &offsets).unwrap();
     let b = bake(&mesh);
     let rim = b.edges.iter().position(|e| e.hole == 0).unwrap();
     let inner = b.edges.iter().position(|e| e.hole == NO_HOLE).unwrap();
