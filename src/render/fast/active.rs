@@ -101,7 +101,9 @@ impl<const N: usize> ActiveFacets<N> {
     }
 
     /// Fills row `y` of `row` with every active facet's span(s), in face order,
-    /// steps them a row and drops those that end. Returns the spans filled.
+    /// steps them a row and drops those that end. Returns the spans filled. Out
+    /// of line: its loop keeps its values in registers.
+    #[inline(never)]
     pub fn fill_row<C: CornerSource>(
         &mut self,
         src: &C,
@@ -113,9 +115,13 @@ impl<const N: usize> ActiveFacets<N> {
         let Self {
             slots, order, free, ..
         } = self;
-        let n = order.len();
-        for r in 0..n {
-            let key = order.get(r).copied().unwrap_or(0);
+        // Slices, so that the loop reads no lengths back from memory.
+        let slots = slots.as_mut_slice();
+        let keys = order.as_mut_slice();
+        for r in 0..keys.len() {
+            let Some(&key) = keys.get(r) else {
+                break;
+            };
             let slot = (key & 0xFFFF) as u16;
             let Some(facet) = slots.get_mut(usize::from(slot)) else {
                 break;
@@ -125,11 +131,11 @@ impl<const N: usize> ActiveFacets<N> {
             } else {
                 facet.fill_row_slow(src, y, s, row)?
             };
-            if y + 1 >= facet.end {
+            if y >= facet.last {
                 // Room for every slot: a slot is freed once.
                 let _ = free.push(slot);
             } else {
-                if let Some(k) = order.get_mut(kept) {
+                if let Some(k) = keys.get_mut(kept) {
                     *k = key;
                 }
                 kept += 1;

@@ -86,8 +86,8 @@ pub(super) struct Facet {
     drow2: u32,
     /// Depths this close to the nearest so far are a tie (16.16).
     tie: u32,
-    /// The row after its last.
-    pub end: i32,
+    /// Its last row.
+    pub last: i32,
     face: u16,
     corners: Corners,
     /// The chains' lower corners' local indices, the bottom corner, the corners.
@@ -164,7 +164,7 @@ pub(super) fn facet(
         b2,
         drow2,
         tie: tie(a, b).max(tie(a2, b2)),
-        end,
+        last: end - 1,
         face,
         corners,
         at: [top as u8; 2],
@@ -289,7 +289,7 @@ impl Facet {
         b2: 0,
         drow2: 0,
         tie: 0,
-        end: 0,
+        last: -1,
         face: 0,
         corners: Corners::Face,
         at: [0; 2],
@@ -367,31 +367,54 @@ impl Facet {
 
     /// The span between the two chains' crossings, then both step a row and the
     /// depth a row: the row loop's fast path, when [`holds`](Self::holds). Out of
-    /// line, so that its loop keeps its few values in registers.
+    /// line, so that its few values stay in registers.
     #[inline(never)]
     pub fn fill_span_row(&mut self, row: &mut [u32]) -> u32 {
-        let (l, r) = (self.left.pixel(), self.right.pixel());
-        let (x0, x1) = (l.min(r), l.max(r));
-        let one = (self.drow, self.a);
-        let two = (self.drow2, self.a2);
-        let spans = match self.layout {
-            Layout::First => self.span(x0, x1, one, row),
-            Layout::Second => self.span(x0, x1, two, row),
-            split => {
-                let xd = self.diag.pixel().clamp(x0, x1);
-                self.diag.next_row();
-                let (left, right) = if split == Layout::FirstLeft {
-                    (one, two)
-                } else {
-                    (two, one)
-                };
-                self.span(x0, xd, left, row) + self.span(xd, x1, right, row)
-            }
+        // Each layout its own copy: no select of fields at run time.
+        match self.layout {
+            Layout::First => self.fill_one::<false>(row),
+            Layout::Second => self.fill_one::<true>(row),
+            Layout::FirstLeft => self.fill_split_row::<false>(row),
+            Layout::FirstRight => self.fill_split_row::<true>(row),
+        }
+    }
+
+    /// One span with the first plane (`SECOND`: the second).
+    #[inline(always)]
+    fn fill_one<const SECOND: bool>(&mut self, row: &mut [u32]) -> u32 {
+        let (lx, rx) = (self.left.x, self.right.x);
+        let (d, a) = if SECOND {
+            (self.drow2, self.a2)
+        } else {
+            (self.drow, self.a)
         };
         self.left.next_row();
         self.right.next_row();
         self.step_planes();
-        spans
+        let (l, r) = (lx >> 16, rx >> 16);
+        let id = 0xFFFF - u32::from(self.face);
+        run(row, l.min(r), l.max(r), d, a, id, self.tie)
+    }
+
+    /// A quad split at its diagonal: two spans, a plane each, the first plane's
+    /// on the left (`SWAP`: on the right). Out of line, apart from the one-plane
+    /// rows' registers.
+    #[inline(never)]
+    fn fill_split_row<const SWAP: bool>(&mut self, row: &mut [u32]) -> u32 {
+        let (l, r) = (self.left.pixel(), self.right.pixel());
+        let (x0, x1) = (l.min(r), l.max(r));
+        let xd = self.diag.pixel().clamp(x0, x1);
+        let ((d, a), (d2, a2)) = if SWAP {
+            ((self.drow2, self.a2), (self.drow, self.a))
+        } else {
+            ((self.drow, self.a), (self.drow2, self.a2))
+        };
+        let (id, tie) = (0xFFFF - u32::from(self.face), self.tie);
+        self.diag.next_row();
+        self.left.next_row();
+        self.right.next_row();
+        self.step_planes();
+        run(row, x0, xd, d, a, id, tie) + run(row, xd, x1, d2, a2, id, tie)
     }
 
     /// Both planes one row down.
@@ -513,27 +536,45 @@ impl Facet {
         }
         for pair in xs.chunks_exact(2) {
             if let [x0, x1] = *pair {
-                spans += self.span(x0, x1, (self.drow, self.a), row);
+                let id = 0xFFFF - u32::from(self.face);
+                spans += run(row, x0, x1, self.drow, self.a, id, self.tie);
             }
         }
         Ok(spans)
     }
+}
 
-    /// Depth-tests pixels `x0..x1` of the row.
-    #[inline(always)]
-    fn span(&self, x0: i32, x1: i32, (drow, a): (u32, i32), row: &mut [u32]) -> u32 {
-        let x0 = x0.max(0);
-        let x1 = x1.min(row.len() as i32);
-        if x0 >= x1 {
-            return 0;
+/// Depth-tests pixels `x0..x1` of `row` (clamped to it) against the entries of a
+/// plane at `drow` (column 0) stepping `a` a pixel: 1 when any pixel was tested.
+#[inline(always)]
+fn run(row: &mut [u32], x0: i32, x1: i32, drow: u32, a: i32, id: u32, tie: u32) -> u32 {
+    let x0 = x0.max(0);
+    let x1 = x1.min(row.len() as i32);
+    if x0 >= x1 {
+        return 0;
+    }
+    let d = drow.wrapping_add(a.wrapping_mul(x0) as u32);
+    // x0 < x1 <= row.len(): the range is in bounds. Most spans of a small mesh
+    // are one or two pixels: those need no loop.
+    match row.get_mut(x0 as usize..x1 as usize).unwrap_or_default() {
+        [c] => take(c, d.wrapping_sub(tie), id, tie),
+        [c0, c1] => {
+            let behind = d.wrapping_sub(tie);
+            take(c0, behind, id, tie);
+            take(c1, behind.wrapping_add(a as u32), id, tie);
         }
-        let d = drow.wrapping_add(a.wrapping_mul(x0) as u32);
-        // x0 < x1 <= row.len(): the range is in bounds.
-        if let Some(cells) = row.get_mut(x0 as usize..x1 as usize) {
-            let id = 0xFFFF - u32::from(self.face);
-            depth_span(cells, d, a as u32, id, self.tie);
-        }
-        1
+        cells => depth_span(cells, d, a as u32, id, tie),
+    }
+    1
+}
+
+/// Depth-tests one cell against the entry made from `behind` (the depth minus the
+/// tie): see [`depth_span`].
+#[inline(always)]
+fn take(c: &mut u32, behind: u32, id: u32, tie: u32) {
+    let e = (behind & 0xFFFF_0000) | id;
+    if e > *c {
+        *c = e.wrapping_add(tie);
     }
 }
 

@@ -96,7 +96,7 @@ pub(super) fn row_at(y: i32, s: u32) -> i32 {
 /// other side of it.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub(super) struct EdgeStep {
-    x: i32,
+    pub x: i32,
     dx: i32,
     /// The row after its last.
     pub end: i32,
