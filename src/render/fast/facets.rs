@@ -123,28 +123,36 @@ pub(super) fn facet(
     split: bool,
 ) -> bool {
     let n = pts.len();
-    let (mut top, mut bottom, mut ymin, mut ymax) = (0usize, 0usize, i32::MAX, i32::MIN);
-    for (i, p) in pts.iter().enumerate() {
-        let y = i32::from(p.y);
-        if y < ymin {
-            (ymin, top) = (y, i);
-        }
-        if y > ymax {
-            (ymax, bottom) = (y, i);
-        }
-    }
-    // Every triangle is monotone in y.
-    let monotone = n == 3 || local_minima(pts) <= 1;
+    // Triangles and quads, nearly every facet, without the general loops.
+    let (top, bottom, ymin, ymax, monotone) = match *pts {
+        [p0, p1, p2] => small_shape([p0, p1, p2, p2], false),
+        [p0, p1, p2, p3] => small_shape([p0, p1, p2, p3], true),
+        _ => polygon_shape(pts),
+    };
     let end = row_at(2 * ymax, s);
     if row >= end || ymin == ymax {
         return false;
     }
     let split = split && n == 4;
-    let ((a, b, drow), (a2, b2, drow2)) = match pts {
+    let ((a, b, drow), (a2, b2, drow2)) = match *pts {
         [p0, p1, p2, p3] if split => (
-            plane(&[*p0, *p1, *p2], row, s),
-            plane(&[*p0, *p2, *p3], row, s),
+            plane_through(p0, p1, p2, det(p0, p1, p2), row, s),
+            plane_through(p0, p2, p3, det(p0, p2, p3), row, s),
         ),
+        [p0, p1, p2] => {
+            let one = plane_through(p0, p1, p2, det(p0, p1, p2), row, s);
+            (one, one)
+        }
+        [p0, p1, p2, p3] => {
+            // The fan triangle of larger area, the first on a tie (as `plane`).
+            let (d1, d2) = (det(p0, p1, p2), det(p0, p2, p3));
+            let one = if d2.abs() > d1.abs() {
+                plane_through(p0, p2, p3, d2, row, s)
+            } else {
+                plane_through(p0, p1, p2, d1, row, s)
+            };
+            (one, one)
+        }
         _ => {
             let one = plane(pts, row, s);
             (one, one)
@@ -193,6 +201,46 @@ pub(super) fn facet(
     true
 }
 
+/// Top and bottom corners (the first of equal ones), their y, and whether it is
+/// monotone in y, of a triangle (`pts[3]` unused) or a quad.
+#[inline(always)]
+fn small_shape(pts: [FastVertex; 4], quad: bool) -> (usize, usize, i32, i32, bool) {
+    let [y0, y1, y2, y3] = pts.map(|p| i32::from(p.y));
+    let (mut top, mut bottom, mut ymin, mut ymax) = (0, 0, y0, y0);
+    for (i, y) in [(1, y1), (2, y2), (3, y3)] {
+        if i == 3 && !quad {
+            break;
+        }
+        if y < ymin {
+            (ymin, top) = (y, i);
+        }
+        if y > ymax {
+            (ymax, bottom) = (y, i);
+        }
+    }
+    // A quad has two local minima exactly when its opposite corners are both
+    // above (or both below) the other two.
+    let monotone = !quad || !(y0.max(y2) < y1.min(y3) || y1.max(y3) < y0.min(y2));
+    (top, bottom, ymin, ymax, monotone)
+}
+
+/// [`small_shape`] of any polygon.
+fn polygon_shape(pts: &[FastVertex]) -> (usize, usize, i32, i32, bool) {
+    let (mut top, mut bottom, mut ymin, mut ymax) = (0usize, 0usize, i32::MAX, i32::MIN);
+    for (i, p) in pts.iter().enumerate() {
+        let y = i32::from(p.y);
+        if y < ymin {
+            (ymin, top) = (y, i);
+        }
+        if y > ymax {
+            (ymax, bottom) = (y, i);
+        }
+    }
+    // Every triangle is monotone in y.
+    let monotone = pts.len() == 3 || local_minima(pts) <= 1;
+    (top, bottom, ymin, ymax, monotone)
+}
+
 /// Local minima of y around the cycle of `pts` (flat runs skipped): 1 when the
 /// polygon is monotone in y.
 fn local_minima(pts: &[FastVertex]) -> u32 {
@@ -237,30 +285,49 @@ fn plane(pts: &[FastVertex], row: i32, s: u32) -> (i32, i32, u32) {
     let Some(&v0) = pts.first() else {
         return (0, 0, 0);
     };
-    let (x0, y0) = (f32::from(v0.x), f32::from(v0.y));
     let (mut best, mut tri) = (0.0f32, (v0, v0));
     for w in pts.get(1..).unwrap_or(&[]).windows(2) {
         if let [p, q] = *w {
-            let det = (f32::from(p.x) - x0) * (f32::from(q.y) - y0)
-                - (f32::from(q.x) - x0) * (f32::from(p.y) - y0);
+            let det = det(v0, p, q);
             if det.abs() > best.abs() {
                 (best, tri) = (det, (p, q));
             }
         }
     }
+    plane_through(v0, tri.0, tri.1, best, row, s)
+}
+
+/// Twice the signed screen area of the triangle `v0 p q` (`2^-2S` px^2), in `f32`.
+#[inline(always)]
+fn det(v0: FastVertex, p: FastVertex, q: FastVertex) -> f32 {
+    let (x0, y0) = (f32::from(v0.x), f32::from(v0.y));
+    (f32::from(p.x) - x0) * (f32::from(q.y) - y0) - (f32::from(q.x) - x0) * (f32::from(p.y) - y0)
+}
+
+/// The plane through the triangle `v0 p q` of [`det`] `det` (flat when 0): see
+/// [`plane`].
+#[inline(always)]
+fn plane_through(
+    v0: FastVertex,
+    p: FastVertex,
+    q: FastVertex,
+    det: f32,
+    row: i32,
+    s: u32,
+) -> (i32, i32, u32) {
+    let (x0, y0) = (f32::from(v0.x), f32::from(v0.y));
     let xa = i32::from(v0.x) >> s;
     let ya = i32::from(v0.y) >> s;
-    if best == 0.0 {
+    if det == 0.0 {
         return (0, 0, v0.d);
     }
-    let (p, q) = tri;
     let (dx1, dy1) = (f32::from(p.x) - x0, f32::from(p.y) - y0);
     let (dx2, dy2) = (f32::from(q.x) - x0, f32::from(q.y) - y0);
     // Depth differences as f32: 16.16 values below 2^32, so the difference is exact
     // to 2^-8 of a depth unit.
     let dd1 = p.d as f32 - v0.d as f32;
     let dd2 = q.d as f32 - v0.d as f32;
-    let inv = 1.0 / best;
+    let inv = 1.0 / det;
     let unit = (1u32 << s) as f32;
     let a_sub = (dd1 * dy2 - dd2 * dy1) * inv;
     let b_sub = (dd2 * dx1 - dd1 * dx2) * inv;
