@@ -9,6 +9,8 @@ use super::*;
 struct Lists {
     faces_drawn: u32,
     feature_edges: u32,
+    /// Columns that the drawn faces' spans may reach: rows are cleared there only.
+    columns: (usize, usize),
 }
 
 impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, FACETS, LINES> {
@@ -87,7 +89,9 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                     f = face_links.get(usize::from(f)).copied().unwrap_or(NONE);
                 }
                 stats.peak_faces = stats.peak_faces.max(self.facets.len() as u32);
-                clear_row(row);
+                // Cells outside the faces' columns stay as the first clear left them.
+                let (c0, c1) = lists.columns;
+                clear_row(row.get_mut(c0..c1.min(width)).unwrap_or_default());
                 let src = Source {
                     mesh,
                     cache: vertices,
@@ -129,17 +133,17 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                     entries: slopes,
                     facets: &self.facets,
                 };
-                let mut i = 0;
-                while let Some(line) = self.lines.get_mut(i) {
-                    if line.row(yi, s, test, row, &faces, &beside, visible, hidden) {
-                        i += 1;
-                    } else {
-                        // Panics only for i >= len, and `get_mut(i)` just found it:
-                        // unreachable. (A form without the panic path cost the
-                        // suzanne frame 1 %, measured.)
-                        self.lines.swap_remove(i);
-                    }
-                }
+                line_row(
+                    &mut self.lines,
+                    yi,
+                    s,
+                    test,
+                    row,
+                    &faces,
+                    &beside,
+                    visible,
+                    hidden,
+                );
             }
             let (visible, hidden) = masks.split_at_mut(words);
             if R::ACTIVE {
@@ -225,6 +229,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         let mut lists = Lists {
             faces_drawn: 0,
             feature_edges: 0,
+            columns: (usize::MAX, 0),
         };
         let depth = settings.mode.needs_depth();
         // Back faces that no ray reaches are skipped (see `holes`).
@@ -259,6 +264,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                 }
             }
             let first = if clipped {
+                lists.columns = (0, usize::MAX);
                 0
             } else {
                 let (first, end) = (step::row_at(lo, s), step::row_at(hi, s));
@@ -266,6 +272,10 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                 if first >= height || end <= 0 || first >= end || c0 >= width || c1 <= 0 {
                     continue;
                 }
+                // A crossing stepped in 16.16 may land a pixel past the face's
+                // corners: two columns of margin.
+                let (c0, c1) = ((c0 - 2).max(0) as usize, (c1 + 2).max(0) as usize);
+                lists.columns = (lists.columns.0.min(c0), lists.columns.1.max(c1));
                 first.max(0)
             };
             lists.faces_drawn += 1;
@@ -516,6 +526,34 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             }
         }
         Ok(())
+    }
+}
+
+/// Draws every active line's pixels in row `y` into the masks, and drops the
+/// lines that end. Out of line: the row loop's values stay in its registers.
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+fn line_row<const LINES: usize>(
+    lines: &mut Vec<ActiveLine, LINES>,
+    y: i32,
+    s: u32,
+    test: LineTest,
+    row: &[u32],
+    faces: &impl FaceSlopes,
+    beside: &impl Fn(u16, &[(i16, i16); 2], (i32, i32)) -> Beside,
+    visible: &mut [u32],
+    hidden: &mut [u32],
+) {
+    let mut i = 0;
+    while let Some(line) = lines.get_mut(i) {
+        if line.row(y, s, test, row, faces, beside, visible, hidden) {
+            i += 1;
+        } else {
+            // Panics only for i >= len, and `get_mut(i)` just found it:
+            // unreachable. (A form without the panic path cost the
+            // suzanne frame 1 %, measured.)
+            lines.swap_remove(i);
+        }
     }
 }
 
