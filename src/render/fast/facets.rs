@@ -469,8 +469,7 @@ impl Facet {
     #[inline(never)]
     fn fill_split_row<const SWAP: bool>(&mut self, row: &mut [u32]) -> u32 {
         let (l, r) = (self.left.pixel(), self.right.pixel());
-        let (x0, x1) = (l.min(r), l.max(r));
-        let xd = self.diag.pixel().clamp(x0, x1);
+        let xd = self.diag.pixel();
         let ((d, a), (d2, a2)) = if SWAP {
             ((self.drow2, self.a2), (self.drow, self.a))
         } else {
@@ -481,7 +480,21 @@ impl Facet {
         self.left.next_row();
         self.right.next_row();
         self.step_planes();
-        run(row, x0, xd, d, a, id, tie) + run(row, xd, x1, d2, a2, id, tie)
+        // Both spans clamped to the row at once, then cut at the diagonal.
+        let x0 = l.min(r).max(0);
+        let x1 = l.max(r).min(row.len() as i32);
+        if x0 >= x1 {
+            return 0;
+        }
+        let xd = xd.clamp(x0, x1);
+        let (one, two) = row
+            .get_mut(x0 as usize..x1 as usize)
+            .unwrap_or_default()
+            .split_at_mut((xd - x0) as usize);
+        let spans = u32::from(!one.is_empty()) + u32::from(!two.is_empty());
+        cells(one, d.wrapping_add(a.wrapping_mul(x0) as u32), a, id, tie);
+        cells(two, d2.wrapping_add(a2.wrapping_mul(xd) as u32), a2, id, tie);
+        spans
     }
 
     /// Both planes one row down.
@@ -621,18 +634,25 @@ fn run(row: &mut [u32], x0: i32, x1: i32, drow: u32, a: i32, id: u32, tie: u32) 
         return 0;
     }
     let d = drow.wrapping_add(a.wrapping_mul(x0) as u32);
-    // x0 < x1 <= row.len(): the range is in bounds. Most spans of a small mesh
-    // are one or two pixels: those need no loop.
-    match row.get_mut(x0 as usize..x1 as usize).unwrap_or_default() {
+    // x0 < x1 <= row.len(): the range is in bounds.
+    cells(row.get_mut(x0 as usize..x1 as usize).unwrap_or_default(), d, a, id, tie);
+    1
+}
+
+/// Depth-tests `row_cells`, the first at depth `d`, stepping `a` a pixel. Most
+/// spans of a small mesh are one or two pixels: those need no loop.
+#[inline(always)]
+fn cells(row_cells: &mut [u32], d: u32, a: i32, id: u32, tie: u32) {
+    match row_cells {
+        [] => {}
         [c] => take(c, d.wrapping_sub(tie), id, tie),
         [c0, c1] => {
             let behind = d.wrapping_sub(tie);
             take(c0, behind, id, tie);
             take(c1, behind.wrapping_add(a as u32), id, tie);
         }
-        cells => depth_span(cells, d, a as u32, id, tie),
+        more => depth_span(more, d, a as u32, id, tie),
     }
-    1
 }
 
 /// Depth-tests one cell against the entry made from `behind` (the depth minus the
