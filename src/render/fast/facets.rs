@@ -433,9 +433,9 @@ impl Facet {
     }
 
     /// The span between the two chains' crossings, then both step a row and the
-    /// depth a row: the row loop's fast path, when [`holds`](Self::holds). Out of
-    /// line, so that its few values stay in registers.
-    #[inline(never)]
+    /// depth a row: the row loop's fast path, when [`holds`](Self::holds). The
+    /// layout picks an out-of-line copy with no field selected at run time.
+    #[inline(always)]
     pub fn fill_span_row(&mut self, row: &mut [u32]) -> u32 {
         // Each layout its own copy: no select of fields at run time.
         match self.layout {
@@ -446,8 +446,9 @@ impl Facet {
         }
     }
 
-    /// One span with the first plane (`SECOND`: the second).
-    #[inline(always)]
+    /// One span with the first plane (`SECOND`: the second). Out of line, so
+    /// that its few values stay in registers.
+    #[inline(never)]
     fn fill_one<const SECOND: bool>(&mut self, row: &mut [u32]) -> u32 {
         let (lx, rx) = (self.left.x, self.right.x);
         let (d, a) = if SECOND {
