@@ -34,6 +34,12 @@ fn tie(a: i32, b: i32) -> u32 {
     units.min(MAX_TIE)
 }
 
+/// The steepest of depth steps `steps` (16.16), in whole depth units (saturating).
+fn steepest(steps: [i32; 4]) -> u16 {
+    let most = steps.iter().fold(0, |m, v| v.unsigned_abs().max(m)) >> 16;
+    most.min(u32::from(u16::MAX)) as u16
+}
+
 /// The largest tie, 128 depth units: half the margin kept free below and above
 /// the frame's depths (`view::MARGIN`), so that `depth - tie` never wraps.
 const MAX_TIE: u32 = 128 << 16;
@@ -86,6 +92,8 @@ pub(super) struct Facet {
     drow2: u32,
     /// Depths this close to the nearest so far are a tie (16.16).
     tie: u32,
+    /// The steepest depth change per pixel, whole depth units (for the line test).
+    slope: u16,
     /// Its last row.
     pub last: i32,
     face: u16,
@@ -172,6 +180,7 @@ pub(super) fn facet(
         b2,
         drow2,
         tie: tie(a, b).max(tie(a2, b2)),
+        slope: steepest([a, b, a2, b2]),
         last: end - 1,
         face,
         corners,
@@ -356,6 +365,7 @@ impl Facet {
         b2: 0,
         drow2: 0,
         tie: 0,
+        slope: 0,
         last: -1,
         face: 0,
         corners: Corners::Face,
@@ -371,11 +381,7 @@ impl Facet {
 
     /// The steepest depth change per pixel, in whole depth units (saturating).
     pub fn slope(&self) -> u16 {
-        let most = [self.a, self.b, self.a2, self.b2]
-            .iter()
-            .fold(0, |m, v| v.unsigned_abs().max(m))
-            >> 16;
-        most.min(u32::from(u16::MAX)) as u16
+        self.slope
     }
 
     /// The face it belongs to.
@@ -494,7 +500,13 @@ impl Facet {
             .split_at_mut((xd - x0) as usize);
         let spans = u32::from(!one.is_empty()) + u32::from(!two.is_empty());
         cells(one, d.wrapping_add(a.wrapping_mul(x0) as u32), a, id, tie);
-        cells(two, d2.wrapping_add(a2.wrapping_mul(xd) as u32), a2, id, tie);
+        cells(
+            two,
+            d2.wrapping_add(a2.wrapping_mul(xd) as u32),
+            a2,
+            id,
+            tie,
+        );
         spans
     }
 
@@ -636,7 +648,13 @@ fn run(row: &mut [u32], x0: i32, x1: i32, drow: u32, a: i32, id: u32, tie: u32) 
     }
     let d = drow.wrapping_add(a.wrapping_mul(x0) as u32);
     // x0 < x1 <= row.len(): the range is in bounds.
-    cells(row.get_mut(x0 as usize..x1 as usize).unwrap_or_default(), d, a, id, tie);
+    cells(
+        row.get_mut(x0 as usize..x1 as usize).unwrap_or_default(),
+        d,
+        a,
+        id,
+        tie,
+    );
     1
 }
 
