@@ -12,6 +12,8 @@ use std::process::{Command, ExitCode};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 
+use crate::progress::Progress;
+
 /// Everything between entry and exit of this function is counted (`--toggle-collect`
 /// matches its symbol, so it must never be inlined).
 #[inline(never)]
@@ -117,6 +119,7 @@ pub fn measure_all_with(
     let dir = std::env::temp_dir().join(format!("pbuffer-bench-{}", std::process::id()));
     std::fs::create_dir_all(&dir).map_err(|e| e.to_string())?;
     let next = AtomicUsize::new(0);
+    let progress = Progress::new("bench: callgrind", "job", ids.len());
     let results: Mutex<Vec<Option<Result<Measured, String>>>> =
         Mutex::new((0..ids.len()).map(|_| None).collect());
     std::thread::scope(|s| {
@@ -127,12 +130,11 @@ pub fn measure_all_with(
                     break;
                 }
                 let r = callgrind_with(&exe, &dir, &ids[i], excluded);
-                eprint!(".");
+                progress.step();
                 results.lock().unwrap()[i] = Some(r);
             });
         }
     });
-    eprintln!();
     std::fs::remove_dir_all(&dir).ok();
     results
         .into_inner()

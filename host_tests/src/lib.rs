@@ -17,6 +17,7 @@ pub mod orbit;
 pub mod origin;
 pub mod pick;
 pub mod pipeline;
+pub mod progress;
 pub mod random;
 pub mod reference;
 pub mod reference3d;

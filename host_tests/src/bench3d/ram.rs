@@ -26,6 +26,7 @@ use super::{
 };
 use crate::bsp::{with_bsp, DepthRanks};
 use crate::callgrind::thousands;
+use crate::progress::Progress;
 use crate::setup::{IdBuffers, SceneStorage};
 
 /// The goal for suzanne at 400 x 240, dashed: working RAM at most 8 KiB.
@@ -67,6 +68,7 @@ impl Parts {
 pub fn run(markdown: bool) -> ExitCode {
     let mut out = String::new();
     let mut failed = false;
+    let progress = Progress::new("bench --ram", "scene", MODELS.len() * SIZES.len());
     for model in MODELS {
         for size in SIZES {
             let view = match View::load(model, size) {
@@ -101,6 +103,7 @@ pub fn run(markdown: bool) -> ExitCode {
                     }
                 }
             }
+            progress.step();
         }
     }
     println!("{out}");

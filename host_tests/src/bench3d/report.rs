@@ -12,6 +12,7 @@ use crate::callgrind::{
 use crate::frame::{EngineSpec, RenderSpec};
 use crate::image::{count_diff, count_set};
 use crate::pipeline::render_frame;
+use crate::progress::Progress;
 
 /// A table row after the native run.
 struct Row {
@@ -116,6 +117,7 @@ pub fn run(markdown: bool, jobs: usize) -> ExitCode {
     let mut failures = Vec::new();
     let mut checks = Vec::new();
     let mut sections: Vec<Vec<Row>> = Vec::new();
+    let progress = Progress::new("bench: 3-D", "scene", MODELS.len() * SIZES.len());
     for model in MODELS {
         for size in SIZES {
             let view = match View::load(model, size) {
@@ -140,6 +142,7 @@ pub fn run(markdown: bool, jobs: usize) -> ExitCode {
                 }
             }
             sections.push(rows);
+            progress.step();
         }
     }
 

@@ -21,7 +21,7 @@ use std::path::Path;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use host_tests::cli::{parse_args, Look, Options, USAGE};
+use host_tests::cli::{help, parse_args, Look, Options};
 use host_tests::frame::{CameraSpec, Frame, MeshData};
 use host_tests::grey::{render_grey, shades};
 use host_tests::image::{fnv1a64, packed_pixel, packed_stride, write_rgb_png};
@@ -133,7 +133,7 @@ fn run() -> Result<(), Fail> {
         .collect();
     let o = parse_args(&args).map_err(bad)?;
     if o.help {
-        println!("{USAGE}");
+        print!("{}", help());
         return Ok(());
     }
 

@@ -4,7 +4,7 @@
 //! cargo run --release -p host_tests --bin report            # full run, writes report/
 //! cargo run --release -p host_tests --bin report -- --quick # smoke test, writes target/report-quick/
 //! cargo run --release -p host_tests --bin report -- engines # every engine, writes report/engines.md
-//! options: --jobs N (callgrind jobs at a time, default 2), --no-counts, --out DIR
+//! options: --jobs N (callgrind jobs at a time, default 2), --no-counts, --out DIR, --help
 //! ```
 //!
 //! Renders the scenes of `host_tests::report` at 400x240 and 128x64 across sub-pixel
@@ -15,60 +15,16 @@
 //! instructions) and `speed-vs-face-error.svg` (face-id error against instructions).
 
 use std::fmt::Write as _;
-use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
 use host_tests::callgrind::{cpu_model, thousands, tool_version};
-use host_tests::obj::workspace_root;
+use host_tests::cli::{help_text, parse_flags, ReportFlags};
 use host_tests::report::run::{counts_pass, errors_pass, Results, BOUND};
 use host_tests::report::write::{
     depth_table, points, recommendation_table, scene_table, summaries, summary_table,
 };
 use host_tests::report::{child, depth, plot, Config, SIZES};
-
-struct Args {
-    quick: bool,
-    engines: bool,
-    counts: bool,
-    jobs: usize,
-    out: PathBuf,
-}
-
-fn parse() -> Result<Args, String> {
-    let mut a = Args {
-        quick: false,
-        engines: false,
-        counts: true,
-        jobs: 2,
-        out: PathBuf::new(),
-    };
-    let mut out = None;
-    let mut it = std::env::args().skip(1);
-    while let Some(arg) = it.next() {
-        match arg.as_str() {
-            "--quick" => a.quick = true,
-            "engines" => a.engines = true,
-            "--no-counts" => a.counts = false,
-            "--jobs" => {
-                a.jobs = it
-                    .next()
-                    .and_then(|v| v.parse().ok())
-                    .ok_or("--jobs needs a number")?;
-            }
-            "--out" => out = Some(PathBuf::from(it.next().ok_or("--out needs a directory")?)),
-            other => return Err(format!("unknown argument {other:?}")),
-        }
-    }
-    a.out = out.unwrap_or_else(|| {
-        if a.quick {
-            workspace_root().join("target/report-quick")
-        } else {
-            workspace_root().join("report")
-        }
-    });
-    Ok(a)
-}
 
 fn main() -> ExitCode {
     let argv: Vec<String> = std::env::args().collect();
@@ -84,20 +40,24 @@ fn main() -> ExitCode {
             }
         };
     }
-    let args = match parse() {
+    let args: ReportFlags = match parse_flags("report", &argv[1..]) {
         Ok(a) => a,
         Err(e) => {
             eprintln!("report: {e}");
             return ExitCode::from(2);
         }
     };
-    if args.engines {
+    if args.help {
+        print!("{}", help_text::<ReportFlags>());
+        return ExitCode::SUCCESS;
+    }
+    if args.is_engines() {
         return engines_report(&args);
     }
     let t = Instant::now();
     let mut res = Results::default();
     errors_pass(args.quick, &mut res);
-    if args.counts {
+    if args.counts() {
         eprintln!("report: {} frames under callgrind", res.rows.len());
         counts_pass(&mut res, args.jobs);
     } else {
@@ -111,8 +71,9 @@ fn main() -> ExitCode {
         }
     };
     let seconds = t.elapsed().as_secs_f64();
-    if let Err(e) = std::fs::create_dir_all(&args.out) {
-        eprintln!("report: cannot create {}: {e}", args.out.display());
+    let out = args.out_dir();
+    if let Err(e) = std::fs::create_dir_all(&out) {
+        eprintln!("report: cannot create {}: {e}", out.display());
         return ExitCode::FAILURE;
     }
     let sizes: Vec<(usize, usize)> = SIZES
@@ -120,8 +81,8 @@ fn main() -> ExitCode {
         .copied()
         .filter(|s| res.checks.iter().any(|c| c.size == *s))
         .collect();
-    let svg = args.out.join("speed-vs-error.svg");
-    let face_svg = args.out.join("speed-vs-face-error.svg");
+    let svg = out.join("speed-vs-error.svg");
+    let face_svg = out.join("speed-vs-face-error.svg");
     let panels = |faces: bool| -> Vec<(String, Vec<plot::Point>)> {
         sizes
             .iter()
@@ -154,7 +115,7 @@ fn main() -> ExitCode {
         }
     };
     let (md, held, total) = document(&args, &res, &depth_rows, &sizes, seconds, plotted);
-    let md_path = args.out.join("speed-vs-error.md");
+    let md_path = out.join("speed-vs-error.md");
     if let Err(e) = std::fs::write(&md_path, md) {
         eprintln!("report: cannot write {}: {e}", md_path.display());
         return ExitCode::FAILURE;
@@ -184,7 +145,7 @@ fn main() -> ExitCode {
 }
 
 fn document(
-    args: &Args,
+    args: &ReportFlags,
     res: &Results,
     depth_rows: &[depth::DepthRow],
     sizes: &[(usize, usize)],
@@ -279,14 +240,14 @@ fn document(
 }
 
 /// `report -- engines`: every engine on every scene, `engines.md`.
-fn engines_report(args: &Args) -> ExitCode {
+fn engines_report(args: &ReportFlags) -> ExitCode {
     use host_tests::frame::EngineSpec;
     use host_tests::report::engines;
     let t = Instant::now();
     let size = if args.quick { (128, 64) } else { (400, 240) };
     let (mut rows, skipped) =
         engines::errors_pass(&engines::scene_names(args.quick), size, &EngineSpec::ALL);
-    let counts = if args.counts {
+    let counts = if args.counts() {
         eprintln!("report: {} frames under callgrind", rows.len());
         engines::counts_pass(&mut rows, args.jobs)
     } else {
@@ -303,11 +264,12 @@ fn engines_report(args: &Args) -> ExitCode {
         t.elapsed().as_secs_f64(),
         &counts,
     );
-    if let Err(e) = std::fs::create_dir_all(&args.out) {
-        eprintln!("report: cannot create {}: {e}", args.out.display());
+    let out = args.out_dir();
+    if let Err(e) = std::fs::create_dir_all(&out) {
+        eprintln!("report: cannot create {}: {e}", out.display());
         return ExitCode::FAILURE;
     }
-    let path = args.out.join("engines.md");
+    let path = out.join("engines.md");
     if let Err(e) = std::fs::write(&path, md) {
         eprintln!("report: cannot write {}: {e}", path.display());
         return ExitCode::FAILURE;

@@ -3,11 +3,16 @@
 /// The colour scheme of the PNG.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Look {
+    /// A reflective memory LCD: grey-green glass, near-black pixels (the default).
     #[default]
     LcdWhite,
+    /// Green glass, dark pixels.
     LcdGreen,
+    /// Blue glass, white pixels.
     LcdBlue,
+    /// White pixels on black.
     OledWhite,
+    /// Cyan pixels on dark blue.
     OledBlue,
     /// Black ink on white paper, no pixel grid.
     Paper,

@@ -9,14 +9,24 @@ use crate::schemes::SchemeSpec;
 /// Everything the command line says.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Options {
+    /// The scene: an OBJ file or `scene:NAME` (none: suzanne or the built-in cube).
     pub scene: Option<PathBuf>,
+    /// `--fit`: frame the whole model.
     pub fit: bool,
+    /// `--eye X,Y,Z`.
     pub eye: Option<[f64; 3]>,
+    /// `--target X,Y,Z`.
     pub target: Option<[f64; 3]>,
+    /// `--up X,Y,Z`.
     pub up: Option<[f64; 3]>,
+    /// `--fov DEG` or `--ortho HALF_HEIGHT`, the last given.
     pub projection: Option<ProjectionSpec>,
+    /// `--near N`.
     pub near: Option<f64>,
+    /// `--far F`.
     pub far: Option<f64>,
+    /// The frame: size, crease, culling, mode, engine, sub-pixel and depth bits,
+    /// band, pattern.
     pub spec: RenderSpec,
     /// Whether `--engine` was given (else the fast engine, or the code-fill engine
     /// for a flag only the exact engines have).
@@ -27,17 +37,25 @@ pub struct Options {
     pub scheme: SchemeSpec,
     /// `--band` as given (the default is the height, known after `--size`).
     pub band: Option<usize>,
+    /// `--out FILE.png`: the picture.
     pub out: Option<PathBuf>,
+    /// `--look L`: the colours of the PNG.
     pub look: Look,
+    /// `--scale N`: PNG pixels per frame pixel.
     pub scale: usize,
+    /// `--ids FILE.pgm`: the face-id image.
     pub ids: Option<PathBuf>,
+    /// `--lines FILE.pgm`: the line-class image.
     pub lines: Option<PathBuf>,
     /// `--grey`: the anti-aliased grey picture (`host_tests::grey`).
     pub grey: Option<PathBuf>,
+    /// `--stats`: print the figures.
     pub stats: bool,
+    /// `--hash`: print the frame's hash.
     pub hash: bool,
     /// `--pick X,Y`: the pixel to pick.
     pub pick: Option<(u16, u16)>,
+    /// `-h`, `--help`: print the help and nothing else.
     pub help: bool,
 }
 

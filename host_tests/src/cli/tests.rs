@@ -1,4 +1,5 @@
-//! Unit tests of the flags: defaults, values, errors, cameras.
+//! Unit tests of the flags: defaults, values, errors, cameras, help; `report`'s and
+//! `bench`'s flags.
 
 use std::path::PathBuf;
 
@@ -176,4 +177,165 @@ fn degenerate_cameras() {
         let e = p(args).unwrap().camera(&m).unwrap_err();
         assert!(e.starts_with(flag), "{args:?}: {e}");
     }
+}
+
+/// The exact one-line messages of the cases clap reports (not our value parsers).
+#[test]
+fn clap_errors_are_our_one_liners() {
+    for (args, want) in [
+        (
+            &["--frobnicate"][..],
+            "--frobnicate: unknown flag (see --help)",
+        ),
+        (
+            &["--frobnicate=3"],
+            "--frobnicate: unknown flag (see --help)",
+        ),
+        (
+            &["--fitt"],
+            "--fitt: unknown flag (did you mean --fit? see --help)",
+        ),
+        (&["--out"], "--out: needs a value"),
+        (&["--size="], "--size: needs a value"),
+        (&["--stats=1"], "--stats: takes no value"),
+        (&["--help=yes"], "--help: takes no value"),
+        (&["--fov", "inf"], "--fov: `inf` is not a finite number"),
+        (&["--fov=180"], "--fov: 180 is not in (0, 180) degrees"),
+        (
+            &["--size", "abc"],
+            "--size: `abc` is not WxH with W and H in 1..=8192",
+        ),
+        (
+            &["--eye", "1,nan,2"],
+            "--eye: `1,nan,2` is not X,Y,Z (`nan` is not a finite number)",
+        ),
+        (&["--near", "nan"], "--near: `nan` is not a finite number"),
+        (
+            &["a.obj", "b.obj"],
+            "b.obj: a second scene (already have a.obj); one SCENE.obj at most",
+        ),
+    ] {
+        assert_eq!(p(args).unwrap_err(), want, "{args:?}");
+    }
+}
+
+#[test]
+fn values_after_the_flag_or_an_equals_sign() {
+    // A value may start with `-` (it is taken as the value, as before).
+    let o = p(&["--eye", "-1,2,-3", "--target=0,-0.5,0"]).unwrap();
+    assert_eq!(o.eye, Some([-1.0, 2.0, -3.0]));
+    assert_eq!(o.target, Some([0.0, -0.5, 0.0]));
+    assert_eq!(
+        p(&["--out", "-x.png"]).unwrap().out,
+        Some(PathBuf::from("-x.png"))
+    );
+    // `--` ends the flags; `-` is a scene name.
+    assert_eq!(
+        p(&["--", "--stats"]).unwrap().scene,
+        Some(PathBuf::from("--stats"))
+    );
+    assert_eq!(p(&["-"]).unwrap().scene, Some(PathBuf::from("-")));
+    assert!(p(&["-h"]).unwrap().help && p(&["--help"]).unwrap().help);
+}
+
+#[test]
+fn a_repeated_flag_overrides_the_earlier_one() {
+    let o = p(&["--size", "10x10", "--size=20x30", "--stats", "--stats"]).unwrap();
+    assert_eq!((o.spec.width, o.spec.height, o.spec.band), (20, 30, 30));
+    // --fov and --ortho set one projection: the last given wins.
+    let proj = |args: &[&str]| p(args).unwrap().projection;
+    assert_eq!(
+        proj(&["--fov", "60", "--ortho", "2"]),
+        Some(ProjectionSpec::Orthographic { half_height: 2.0 })
+    );
+    assert_eq!(
+        proj(&["--ortho", "2", "--fov", "60"]),
+        Some(ProjectionSpec::Perspective { fov_deg: 60.0 })
+    );
+}
+
+#[test]
+fn help_describes_every_flag() {
+    use clap::CommandFactory as _;
+    Flags::command().debug_assert();
+    let text = help();
+    for arg in Flags::command()
+        .get_arguments()
+        .filter(|a| !a.is_hide_set())
+    {
+        if let Some(long) = arg.get_long() {
+            let line = text
+                .lines()
+                .find(|l| {
+                    l.trim_start().starts_with(&format!("--{long}"))
+                        || l.contains(&format!(" --{long}"))
+                })
+                .unwrap_or_else(|| panic!("--{long} not in the help"));
+            assert!(
+                line.split_whitespace().count() > 2,
+                "--{long} undescribed: {line}"
+            );
+        }
+    }
+    assert!(text.contains("exit status: 0 ok, 2 bad input"));
+}
+
+#[test]
+fn report_flags() {
+    use clap::CommandFactory as _;
+    ReportFlags::command().debug_assert();
+    let r = |args: &[&str]| parse_flags::<ReportFlags, _, _>("report", args);
+    let d = r(&[]).unwrap();
+    assert!(!d.is_engines() && !d.quick && d.counts() && d.jobs == 2);
+    assert!(d.out_dir().ends_with("report"));
+    let q = r(&["--quick", "engines", "--jobs", "1", "--no-counts"]).unwrap();
+    assert!(q.is_engines() && q.quick && !q.counts() && q.jobs == 1);
+    assert!(q.out_dir().ends_with("target/report-quick"));
+    assert_eq!(r(&["--out=x"]).unwrap().out_dir(), PathBuf::from("x"));
+    for (args, want) in [
+        (
+            &["--jobs", "two"][..],
+            "--jobs: `two` is not a whole number",
+        ),
+        (&["--jobs"], "--jobs: needs a value"),
+        (
+            &["--quik"],
+            "--quik: unknown flag (did you mean --quick? see --help)",
+        ),
+        (
+            &["engine"],
+            "engine: unknown argument: neither a flag nor `engines` (see --help)",
+        ),
+    ] {
+        assert_eq!(r(args).unwrap_err(), want, "{args:?}");
+    }
+    assert!(help_text::<ReportFlags>().contains("--no-counts"));
+}
+
+#[test]
+fn bench_flags() {
+    use clap::CommandFactory as _;
+    BenchFlags::command().debug_assert();
+    let b = |args: &[&str]| parse_flags::<BenchFlags, _, _>("bench", args);
+    let d = b(&[]).unwrap();
+    assert!(!d.markdown && !d.scene3d && !d.ram && !d.firmware);
+    assert_eq!((d.m4, d.jobs), (None, None));
+    let f = b(&["--firmware", "--m4", "m4.txt", "--jobs=3", "--markdown"]).unwrap();
+    assert!(f.firmware && f.markdown);
+    assert_eq!((f.m4.as_deref(), f.jobs), (Some("m4.txt"), Some(3)));
+    assert!(
+        b(&["--scene3d", "--ram"]).is_ok(),
+        "the run picks one, as before"
+    );
+    for (args, want) in [
+        (&["--m4"][..], "--m4: needs a value"),
+        (&["--jobs", "-1"], "--jobs: `-1` is not a whole number"),
+        (
+            &["--scene"],
+            "--scene: unknown flag (did you mean --scene3d? see --help)",
+        ),
+    ] {
+        assert_eq!(b(args).unwrap_err(), want, "{args:?}");
+    }
+    assert!(help_text::<BenchFlags>().contains("--firmware"));
 }

@@ -91,11 +91,13 @@ pub fn errors_pass(
     engines: &[EngineSpec],
 ) -> (Vec<EngineRow>, Vec<String>) {
     let (mut rows, mut skipped) = (Vec::new(), Vec::new());
+    let progress = crate::progress::Progress::new("report: engines", "scene", scenes.len());
     for &name in scenes {
         let scene = match load_scene(name) {
             Ok(s) => s,
             Err(e) => {
                 skipped.push(format!("{name}: {e}"));
+                progress.step();
                 continue;
             }
         };
@@ -104,6 +106,7 @@ pub fn errors_pass(
             Ok(r) => r,
             Err(e) => {
                 skipped.push(format!("{name}: reference: {e}"));
+                progress.step();
                 continue;
             }
         };
@@ -127,6 +130,7 @@ pub fn errors_pass(
                 ir: None,
             });
         }
+        progress.step();
     }
     (rows, skipped)
 }

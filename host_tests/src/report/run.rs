@@ -15,6 +15,7 @@ use super::{configs, job_key, load_scene, scene_names, sizes, Config, ENGINES};
 use crate::callgrind::callgrind_with;
 use crate::frame::{CameraSpec, ProjectionSpec, RenderSpec};
 use crate::pipeline::{render_frame, EXCLUDED};
+use crate::progress::Progress;
 use crate::reference3d::reference_frame;
 use crate::shapes;
 
@@ -151,12 +152,15 @@ fn stat(stats: &[(String, u64)], k: &str) -> u64 {
 /// Renders every combination natively and measures its error.
 pub fn errors_pass(quick: bool, res: &mut Results) {
     let t = Instant::now();
-    for name in scene_names(quick) {
+    let names = scene_names(quick);
+    let progress = Progress::new("report: errors", "scene", names.len());
+    for name in names {
         let scene = match load_scene(name) {
             Ok(s) => s,
             Err(e) => {
                 eprintln!("report: {name} skipped: {e}");
                 res.skipped.push(format!("{name}: {e}"));
+                progress.step();
                 continue;
             }
         };
@@ -253,6 +257,7 @@ pub fn errors_pass(quick: bool, res: &mut Results) {
             }
             eprintln!();
         }
+        progress.step();
     }
     res.seconds_errors = t.elapsed().as_secs_f64();
 }
@@ -300,8 +305,11 @@ pub fn counts_pass(res: &mut Results, jobs: usize) {
     res.seconds_counts = t.elapsed().as_secs_f64();
 }
 
+/// Runs the report's callgrind jobs (`report --child KEY`), `jobs` at a time, their
+/// output files in `dir`; the instructions of each, in the order of `keys`.
 pub fn run_jobs(exe: &Path, dir: &Path, keys: &[String], jobs: usize) -> Vec<Result<u64, String>> {
     let next = AtomicUsize::new(0);
+    let progress = Progress::new("report: callgrind", "job", keys.len());
     let results: Mutex<Vec<Option<Result<u64, String>>>> =
         Mutex::new((0..keys.len()).map(|_| None).collect());
     std::thread::scope(|s| {
@@ -312,15 +320,11 @@ pub fn run_jobs(exe: &Path, dir: &Path, keys: &[String], jobs: usize) -> Vec<Res
                     break;
                 }
                 let r = callgrind_with(exe, dir, &keys[i], &EXCLUDED).map(|m| m.ir);
-                if i % 10 == 9 {
-                    eprint!("{}", i + 1);
-                }
-                eprint!(".");
+                progress.step();
                 results.lock().expect("no panic holds the lock")[i] = Some(r);
             });
         }
     });
-    eprintln!();
     results
         .into_inner()
         .expect("no panic holds the lock")

@@ -5,6 +5,7 @@
 //! cargo run --release -p host_tests --bin bench [-- --markdown] [-- --jobs N]
 //! cargo run --release -p host_tests --bin bench -- --scene3d [--markdown]
 //! cargo run --release -p host_tests --bin bench -- --firmware [--m4 FILE]
+//! cargo run --release -p host_tests --bin bench -- --help
 //! ```
 //!
 //! `--firmware` counts the firmware examples' frames on the host and sets them against
@@ -59,6 +60,7 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::{PrimitiveStyle, Triangle};
 use fixed::types::extra::U4;
 use host_tests::callgrind::measured_region;
+use host_tests::cli::{help_text, parse_flags, BenchFlags};
 use host_tests::image::{count_diff, count_set};
 use host_tests::scenes::{
     bench_triangles, int_triangle_to_screen, large_polygons, sized_triangles, to_screen,
@@ -419,55 +421,31 @@ fn main() -> ExitCode {
             return child(id);
         }
     }
-    let mut markdown = false;
-    let mut scene3d = false;
-    let mut ram = false;
-    let mut firmware = false;
-    let mut m4 = firmware::DEFAULT_M4.to_string();
-    let mut jobs = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let mut it = args.iter();
-    while let Some(a) = it.next() {
-        match a.as_str() {
-            "--markdown" => markdown = true,
-            "--scene3d" => scene3d = true,
-            "--ram" => ram = true,
-            "--firmware" => firmware = true,
-            "--m4" => match it.next() {
-                Some(f) => m4 = f.clone(),
-                None => {
-                    eprintln!("bench: --m4 needs a file");
-                    return ExitCode::from(2);
-                }
-            },
-            "--jobs" => match it.next().and_then(|j| j.parse().ok()) {
-                Some(j) => jobs = j,
-                None => {
-                    eprintln!("bench: --jobs needs a number");
-                    return ExitCode::from(2);
-                }
-            },
-            "-h" | "--help" => {
-                println!("usage: bench [--markdown] [--scene3d | --ram | --firmware [--m4 FILE]] [--jobs N]");
-                return ExitCode::SUCCESS;
-            }
-            other => {
-                eprintln!(
-                    "bench: unknown argument {other:?}\nusage: bench [--markdown] [--scene3d | --ram | --firmware [--m4 FILE]] [--jobs N]"
-                );
-                return ExitCode::from(2);
-            }
+    let flags: BenchFlags = match parse_flags("bench", &args) {
+        Ok(f) => f,
+        Err(e) => {
+            eprintln!("bench: {e}");
+            return ExitCode::from(2);
         }
+    };
+    if flags.help {
+        print!("{}", help_text::<BenchFlags>());
+        return ExitCode::SUCCESS;
     }
+    let jobs = flags
+        .jobs
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    let markdown = flags.markdown;
     if cfg!(debug_assertions) {
         eprintln!("bench: warning: debug build; run with --release for meaningful counts");
     }
-    if firmware {
-        return firmware::run(&m4, jobs);
+    if flags.firmware {
+        return firmware::run(flags.m4.as_deref().unwrap_or(firmware::DEFAULT_M4), jobs);
     }
-    if ram {
+    if flags.ram {
         return host_tests::bench3d::run_ram(markdown);
     }
-    if scene3d {
+    if flags.scene3d {
         return host_tests::bench3d::run(markdown, jobs);
     }
 
