@@ -14,6 +14,8 @@
 use heapless::Vec;
 
 use super::clip::CLIP_CORNERS;
+use super::depth_row::{cells, run};
+use super::planes::{det, plane, plane_through, steepest, tie};
 use super::step::{crossing, row_at, EdgeStep};
 use super::view::FastVertex;
 use crate::Error;
@@ -21,28 +23,6 @@ use crate::Error;
 /// Most corners of a face the fast engine draws without clipping; more is
 /// `CapacityExceeded` (for the even-odd path's crossings).
 pub const MAX_CORNERS: usize = 64;
-
-/// Depths closer than a facet's tie are a tie, which the lower face index wins:
-/// coplanar faces get planes through different snapped corners, each up to
-/// `2^-(S+1)` px from its exact place, so their depths differ by up to about a
-/// sixteenth of a pixel's depth change (at S = 4), plus rounding: the tie is one
-/// depth unit plus `(|a| + |b|) / 16`, rounded up to whole depth units (so that
-/// the pixel loop makes the stored entry from the compared one with one add).
-fn tie(a: i32, b: i32) -> u32 {
-    let slope = (a.unsigned_abs() >> 4).saturating_add(b.unsigned_abs() >> 4);
-    let units = (1u32 << 16).saturating_add(slope).saturating_add(0xFFFF) & 0xFFFF_0000;
-    units.min(MAX_TIE)
-}
-
-/// The steepest of depth steps `steps` (16.16), in whole depth units (saturating).
-fn steepest(steps: [i32; 4]) -> u16 {
-    let most = steps.iter().fold(0, |m, v| v.unsigned_abs().max(m)) >> 16;
-    most.min(u32::from(u16::MAX)) as u16
-}
-
-/// The largest tie, 128 depth units: half the margin kept free below and above
-/// the frame's depths (`view::MARGIN`), so that `depth - tie` never wraps.
-const MAX_TIE: u32 = 128 << 16;
 
 /// Where a facet's corners are.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -286,69 +266,6 @@ impl CornerSource for OwnCorners {
     fn corner(&self, _: Corners, _: u16, _: usize) -> FastVertex {
         FastVertex::ZERO
     }
-}
-
-/// The depth plane through the fan triangle of largest screen area: steps per
-/// pixel and per row, and the depth at the centre of column 0 of `row`.
-fn plane(pts: &[FastVertex], row: i32, s: u32) -> (i32, i32, u32) {
-    let Some(&v0) = pts.first() else {
-        return (0, 0, 0);
-    };
-    let (mut best, mut tri) = (0.0f32, (v0, v0));
-    for w in pts.get(1..).unwrap_or(&[]).windows(2) {
-        if let [p, q] = *w {
-            let det = det(v0, p, q);
-            if det.abs() > best.abs() {
-                (best, tri) = (det, (p, q));
-            }
-        }
-    }
-    plane_through(v0, tri.0, tri.1, best, row, s)
-}
-
-/// Twice the signed screen area of the triangle `v0 p q` (`2^-2S` px^2), in `f32`.
-#[inline(always)]
-fn det(v0: FastVertex, p: FastVertex, q: FastVertex) -> f32 {
-    let (x0, y0) = (f32::from(v0.x), f32::from(v0.y));
-    (f32::from(p.x) - x0) * (f32::from(q.y) - y0) - (f32::from(q.x) - x0) * (f32::from(p.y) - y0)
-}
-
-/// The plane through the triangle `v0 p q` of [`det`] `det` (flat when 0): see
-/// [`plane`].
-#[inline(always)]
-fn plane_through(
-    v0: FastVertex,
-    p: FastVertex,
-    q: FastVertex,
-    det: f32,
-    row: i32,
-    s: u32,
-) -> (i32, i32, u32) {
-    let (x0, y0) = (f32::from(v0.x), f32::from(v0.y));
-    let xa = i32::from(v0.x) >> s;
-    let ya = i32::from(v0.y) >> s;
-    if det == 0.0 {
-        return (0, 0, v0.d);
-    }
-    let (dx1, dy1) = (f32::from(p.x) - x0, f32::from(p.y) - y0);
-    let (dx2, dy2) = (f32::from(q.x) - x0, f32::from(q.y) - y0);
-    // Depth differences as f32: 16.16 values below 2^32, so the difference is exact
-    // to 2^-8 of a depth unit.
-    let dd1 = p.d as f32 - v0.d as f32;
-    let dd2 = q.d as f32 - v0.d as f32;
-    let inv = 1.0 / det;
-    let unit = (1u32 << s) as f32;
-    let a_sub = (dd1 * dy2 - dd2 * dy1) * inv;
-    let b_sub = (dd2 * dx1 - dd1 * dx2) * inv;
-    // From corner 0 to the centre of its pixel, in 2^-S px.
-    let ox = (xa as f32 + 0.5) * unit - x0;
-    let oy = (ya as f32 + 0.5) * unit - y0;
-    let c = v0.d.wrapping_add((a_sub * ox + b_sub * oy) as i32 as u32);
-    let (a, b) = ((a_sub * unit) as i32, (b_sub * unit) as i32);
-    let drow = c
-        .wrapping_add(b.wrapping_mul(row - ya) as u32)
-        .wrapping_sub(a.wrapping_mul(xa) as u32);
-    (a, b, drow)
 }
 
 impl Facet {
@@ -634,97 +551,6 @@ impl Facet {
             }
         }
         Ok(spans)
-    }
-}
-
-/// Depth-tests pixels `x0..x1` of `row` (clamped to it) against the entries of a
-/// plane at `drow` (column 0) stepping `a` a pixel: 1 when any pixel was tested.
-#[inline(always)]
-fn run(row: &mut [u32], x0: i32, x1: i32, drow: u32, a: i32, id: u32, tie: u32) -> u32 {
-    let x0 = x0.max(0);
-    let x1 = x1.min(row.len() as i32);
-    if x0 >= x1 {
-        return 0;
-    }
-    let d = drow.wrapping_add(a.wrapping_mul(x0) as u32);
-    // x0 < x1 <= row.len(): the range is in bounds.
-    cells(
-        row.get_mut(x0 as usize..x1 as usize).unwrap_or_default(),
-        d,
-        a,
-        id,
-        tie,
-    );
-    1
-}
-
-/// Depth-tests `row_cells`, the first at depth `d`, stepping `a` a pixel. Most
-/// spans of a small mesh are one or two pixels: those need no loop.
-#[inline(always)]
-fn cells(row_cells: &mut [u32], d: u32, a: i32, id: u32, tie: u32) {
-    match row_cells {
-        [] => {}
-        [c] => take(c, d.wrapping_sub(tie), id, tie),
-        [c0, c1] => {
-            let behind = d.wrapping_sub(tie);
-            take(c0, behind, id, tie);
-            take(c1, behind.wrapping_add(a as u32), id, tie);
-        }
-        more => depth_span(more, d, a as u32, id, tie),
-    }
-}
-
-/// Depth-tests one cell against the entry made from `behind` (the depth minus the
-/// tie): see [`depth_span`].
-#[inline(always)]
-fn take(c: &mut u32, behind: u32, id: u32, tie: u32) {
-    let e = (behind & 0xFFFF_0000) | id;
-    if e > *c {
-        *c = e.wrapping_add(tie);
-    }
-}
-
-/// Depth-tests `cells` against the facet entries `(d & 0xFFFF_0000) | id`, `d`
-/// stepping by `a` a pixel. The row's facets come in the order of their face
-/// index, so the nearest so far has a lower (or the same) index: the facet takes a
-/// pixel only when nearer by more than its `tie`, and one compare a pixel does it.
-#[inline(always)]
-fn depth_span(cells: &mut [u32], d: u32, a: u32, id: u32, tie: u32) {
-    // Depths lie in 2^24..2^32 - 2^24 and the tie below 2^23: no wrap. The tie is
-    // whole depth units, so `(d & 0xFFFF_0000) | id` is the compared entry plus
-    // the tie.
-    let mut behind = d.wrapping_sub(tie);
-    let mut pairs = cells.chunks_exact_mut(2);
-    for pair in &mut pairs {
-        if let [c0, c1] = pair {
-            let e0 = (behind & 0xFFFF_0000) | id;
-            let e1 = (behind.wrapping_add(a) & 0xFFFF_0000) | id;
-            if e0 > *c0 {
-                *c0 = e0.wrapping_add(tie);
-            }
-            if e1 > *c1 {
-                *c1 = e1.wrapping_add(tie);
-            }
-            behind = behind.wrapping_add(a.wrapping_mul(2));
-        }
-    }
-    if let [c] = pairs.into_remainder() {
-        let e = (behind & 0xFFFF_0000) | id;
-        if e > *c {
-            *c = e.wrapping_add(tie);
-        }
-    }
-}
-
-/// Clears a row of nearest-face entries (0: none), eight words a store run (the
-/// library's `memset` is slower on the Cortex-M4).
-pub(super) fn clear_row(row: &mut [u32]) {
-    let mut chunks = row.chunks_exact_mut(8);
-    for chunk in &mut chunks {
-        chunk.copy_from_slice(&[0; 8]);
-    }
-    for cell in chunks.into_remainder() {
-        *cell = 0;
     }
 }
 

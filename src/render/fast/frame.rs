@@ -529,34 +529,6 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
     }
 }
 
-/// Draws every active line's pixels in row `y` into the masks, and drops the
-/// lines that end. Out of line: the row loop's values stay in its registers.
-#[allow(clippy::too_many_arguments)]
-#[inline(never)]
-fn line_row<const LINES: usize>(
-    lines: &mut Vec<ActiveLine, LINES>,
-    y: i32,
-    s: u32,
-    test: LineTest,
-    row: &[u32],
-    faces: &impl FaceSlopes,
-    beside: &impl Fn(u16, &[(i16, i16); 2], (i32, i32)) -> Beside,
-    visible: &mut [u32],
-    hidden: &mut [u32],
-) {
-    let mut i = 0;
-    while let Some(line) = lines.get_mut(i) {
-        if line.row(y, s, test, row, faces, beside, visible, hidden) {
-            i += 1;
-        } else {
-            // Panics only for i >= len, and `get_mut(i)` just found it:
-            // unreachable. (A form without the panic path cost the
-            // suzanne frame 1 %, measured.)
-            lines.swap_remove(i);
-        }
-    }
-}
-
 /// A `slopes` entry with this bit holds the slot of the face's one facet (whose
 /// record the line test reads in the same row), else the steepest slope of its
 /// facets (saturated below the bit).
@@ -601,36 +573,6 @@ impl<const N: usize> FaceSlopes for Slopes<'_, N> {
     }
 }
 
-/// Is point `e` (half-units) inside the polygon with corners `corners` (half-units)
-/// by the even-odd rule, a point on an edge counting as inside?
-fn covers(mut corners: impl Iterator<Item = (i32, i32)> + Clone, e: (i32, i32)) -> bool {
-    let Some(first) = corners.next() else {
-        return false;
-    };
-    let (x, y) = (i64::from(e.0), i64::from(e.1));
-    let mut inside = false;
-    let mut a = first;
-    for b in corners.chain(core::iter::once(first)) {
-        let (ay, by) = (i64::from(a.1), i64::from(b.1));
-        if (ay <= y) != (by <= y) {
-            let (lx, ly, hx, hy) = if ay < by {
-                (i64::from(a.0), ay, i64::from(b.0), by)
-            } else {
-                (i64::from(b.0), by, i64::from(a.0), ay)
-            };
-            let cross = (hx - lx) * (y - ly) - (hy - ly) * (x - lx);
-            if cross == 0 {
-                return true;
-            }
-            if cross > 0 {
-                inside = !inside;
-            }
-        }
-        a = b;
-    }
-    inside
-}
-
 /// The face ids of a row for a probe (1 + face, 0 none). Out of line: the host's
 /// instruction counts leave it out, as firmware has no probe.
 #[inline(never)]
@@ -642,69 +584,4 @@ fn probe_ids(depth: bool, row: &[u32], ids: &mut [u16]) {
             0
         };
     }
-}
-
-/// Is the polygon `pts` strictly convex on screen: do all its corners turn the
-/// same way, none straight? Then each of its diagonals lies inside it and splits
-/// it into two triangles on either side, and its rows beyond a diagonal's belong
-/// to one of them.
-fn convex(pts: &[FastVertex]) -> bool {
-    let n = pts.len();
-    let (mut pos, mut neg) = (0, 0);
-    for i in 0..n {
-        let at = |k: usize| pts.get(k % n).copied().unwrap_or_default();
-        let cross = turn(at(i), at(i + 1), at(i + 2));
-        pos += usize::from(cross > 0);
-        neg += usize::from(cross < 0);
-    }
-    pos == n || neg == n
-}
-
-/// The cross product `(p - o) x (q - o)` of screen points: positive when `o, p, q`
-/// turn one way, negative the other, 0 on a line. 16-bit coordinates: the products
-/// fit `i64` exactly.
-fn turn(o: FastVertex, p: FastVertex, q: FastVertex) -> i64 {
-    let (ax, ay) = (
-        i32::from(p.x) - i32::from(o.x),
-        i32::from(p.y) - i32::from(o.y),
-    );
-    let (bx, by) = (
-        i32::from(q.x) - i32::from(o.x),
-        i32::from(q.y) - i32::from(o.y),
-    );
-    i64::from(ax) * i64::from(by) - i64::from(bx) * i64::from(ay)
-}
-
-/// Does every fan triangle `(c0, ck, ck+1)` of the face with cached corners
-/// `corners` turn the way a back face turns on screen (clockwise with y up),
-/// none edge-on? A bent face whose Newell normal faces away may still have a fan
-/// triangle that faces the eye: that one is front surface.
-fn turns_away(corners: &[u32], cache: &[FastVertex]) -> bool {
-    let at = |v: &u32| cache.get(*v as usize).copied().unwrap_or_default();
-    let Some(p0) = corners.first().map(at) else {
-        return false;
-    };
-    corners
-        .get(1..)
-        .unwrap_or(&[])
-        .windows(2)
-        .all(|w| matches!(w, [p, q] if turn(p0, at(p), at(q)) > 0))
-}
-
-/// Does the fan of `pts` fold over on screen: do its triangles `(p0, pk, pk+1)` not
-/// all turn the same way? Then they overlap, and their union is not the polygon's
-/// even-odd coverage: such a face is drawn as its polygon with one plane.
-fn folds(pts: &[FastVertex]) -> bool {
-    let Some(&p0) = pts.first() else {
-        return false;
-    };
-    let (mut pos, mut neg) = (false, false);
-    for w in pts.get(1..).unwrap_or(&[]).windows(2) {
-        if let [p, q] = *w {
-            let cross = turn(p0, p, q);
-            pos |= cross > 0;
-            neg |= cross < 0;
-        }
-    }
-    pos && neg
 }

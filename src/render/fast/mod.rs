@@ -53,9 +53,12 @@
 mod active;
 mod baked;
 mod clip;
+mod depth_row;
 mod facets;
 mod holes;
 mod lines;
+mod planes;
+mod polygon;
 mod row_out;
 mod step;
 mod view;
@@ -78,9 +81,11 @@ use crate::mesh::{bit, set_bit, EdgeKind, Viewpoint};
 use crate::{Error, SpanSink, Viewport};
 use active::ActiveFacets;
 use clip::{clip_polygon, clip_segment};
-use facets::{clear_row, facet, ClipPolygon, CornerSource, Corners, Facet};
+use depth_row::clear_row;
+use facets::{facet, ClipPolygon, CornerSource, Corners, Facet};
 use holes::HoleBoxes;
-use lines::{ActiveLine, Beside, FaceSlopes, LineTest};
+use lines::{line_row, ActiveLine, Beside, FaceSlopes, LineTest};
+use polygon::{convex, covers, folds, turns_away};
 use row_out::{emit_row, Shades};
 use view::{guard_px, ScreenMap};
 
