@@ -9,9 +9,14 @@
 //! covering the edge point: so a face with a corner at one of the line's ends hides
 //! the pixel only when its polygon covers the edge point itself (tested exactly,
 //! only for these few).
+//!
+//! With dashes along the edges ([`super::dash`]) a hidden pixel in a gap is also
+//! marked in a third mask, the gaps, which the row's output takes away.
 
+use super::dash::{Dashing, Phase};
 use super::step::Stepper;
 use super::view::FastVertex;
+use crate::camera::sqrt;
 
 /// The margin's share of the nearer face's slope, in quarter pixels.
 const SLOPE_MARGIN: u32 = 1;
@@ -36,6 +41,8 @@ pub(super) struct ActiveLine {
     bias: u32,
     /// The last nearer face found apart from the line's ends (`NONE` at first).
     apart: u16,
+    /// The dash phase along the line ([`Phase::SCREEN`]: the screen pattern).
+    phase: Phase,
 }
 
 /// What the line test knows of the face nearest at a pixel.
@@ -71,13 +78,15 @@ impl ActiveLine {
     /// The line between `a` and `b` (snapped screen points) with own faces
     /// `faces`; `None` when it has no pixel centre.
     /// `ends` are the edge's vertices' cache positions (which the faces around its
-    /// ends share).
+    /// ends share). `along`: the frame's dashes along the edges, and the anchor
+    /// (`2^-S` px), the unclipped position of the edge's end on `a`'s side.
     pub fn new(
         a: FastVertex,
         b: FastVertex,
         faces: [u16; 2],
         ends: [(i16, i16); 2],
         s: u32,
+        along: Option<(Dashing, (f32, f32))>,
     ) -> Option<Self> {
         let (h, p) = (1i32 << s, 2i32 << s);
         let ((ax, ay), (bx, by)) = (a.half(), b.half());
@@ -115,6 +124,16 @@ impl ActiveLine {
         let c = ((2 * k + 1) * h - u0) as f32;
         let d = (d0 + c * per) as u32;
         let dd = (per * p as f32) as i32 * dir;
+        let phase = match along {
+            Some((dashing, (ax, ay))) => {
+                let anchor = if x_major { ax } else { ay } / (1u32 << s) as f32;
+                let (fu, fv) = (du as f32, dv as f32);
+                let ratio = sqrt(fu * fu + fv * fv) / fu;
+                // `a` is the end at the smaller major coordinate when `forward`.
+                Phase::new(dashing, anchor, forward, ratio, k_first)
+            }
+            None => Phase::SCREEN,
+        };
         Some(Self {
             own: faces.map(|f| 0xFFFF - f),
             ends,
@@ -127,12 +146,14 @@ impl ActiveLine {
             dd,
             bias: dd.unsigned_abs().saturating_add(1 << 16),
             apart: super::NONE,
+            phase,
         })
     }
 
-    /// Draws the line's pixels in row `y` into the visible and hidden masks
-    /// (`row` is the finished row of face entries); returns false once the line
-    /// has no pixel left.
+    /// Draws the line's pixels in row `y` into the visible and hidden masks, and
+    /// its hidden pixels in the gaps of its dashes into `gaps` (`on` is the
+    /// frame's [`Dashing::on`]); `row` is the finished row of face entries.
+    /// Returns false once the line has no pixel left.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub fn row(
@@ -145,6 +166,8 @@ impl ActiveLine {
         beside: &impl Fn(u16, &[(i16, i16); 2], (i32, i32)) -> Beside,
         visible: &mut [u32],
         hidden: &mut [u32],
+        gaps: &mut [u32],
+        on: u32,
     ) -> bool {
         let sh = s + 1;
         let last = i32::from(self.last);
@@ -174,6 +197,8 @@ impl ActiveLine {
                 beside,
                 visible,
                 hidden,
+                gaps,
+                on,
             );
             if k == last {
                 return false;
@@ -189,7 +214,9 @@ impl ActiveLine {
                 break true;
             }
             if py == y {
-                self.pixel(k, row, k, v.q, d, s, test, slopes, beside, visible, hidden);
+                self.pixel(
+                    k, row, k, v.q, d, s, test, slopes, beside, visible, hidden, gaps, on,
+                );
             }
             if k == last {
                 break false;
@@ -215,7 +242,8 @@ impl ActiveLine {
     }
 
     /// Marks the line's pixel in column `x` of `row` (none outside it) visible or
-    /// hidden; `k`, `q` and `d` are its centre, minor coordinate and depth.
+    /// hidden, and hidden in a gap; `k`, `q` and `d` are its centre, minor
+    /// coordinate and depth.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn pixel(
@@ -231,6 +259,8 @@ impl ActiveLine {
         beside: &impl Fn(u16, &[(i16, i16); 2], (i32, i32)) -> Beside,
         visible: &mut [u32],
         hidden: &mut [u32],
+        gaps: &mut [u32],
+        on: u32,
     ) {
         let Some(&cell) = row.get(x as usize) else {
             return;
@@ -243,6 +273,11 @@ impl ActiveLine {
         let x = x as usize;
         if let Some(w) = mask.get_mut(x / 32) {
             *w |= 1 << (x % 32);
+        }
+        if hide && self.phase.in_gap(k, on) {
+            if let Some(w) = gaps.get_mut(x / 32) {
+                *w |= 1 << (x % 32);
+            }
         }
     }
 

@@ -69,8 +69,9 @@ impl Shades<'_> {
 }
 
 /// Sends row `y` to `sink`: `row` holds the nearest face entries, `visible` and
-/// `hidden` the line masks (`visible` becomes the drawn line pixels). Returns the
-/// spans sent.
+/// `hidden` the line masks (`visible` becomes the drawn line pixels), `gaps` the
+/// hidden pixels in the gaps of dashes along the edges (empty with the screen
+/// pattern). Returns the spans sent.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn emit_row<K: SpanSink, P: Palette<Color = K::Color>>(
     y: u16,
@@ -78,6 +79,7 @@ pub(super) fn emit_row<K: SpanSink, P: Palette<Color = K::Color>>(
     row: &[u32],
     visible: &mut [u32],
     hidden: &[u32],
+    gaps: &[u32],
     palette: &P,
     shades: &mut Shades<'_>,
     sink: &mut K,
@@ -90,6 +92,8 @@ pub(super) fn emit_row<K: SpanSink, P: Palette<Color = K::Color>>(
     };
     let dashed = matches!(settings.mode, DrawMode::Dashed | DrawMode::SurfacesDashed);
     let lines = settings.mode != DrawMode::Surfaces;
+    // Dashes along the edges take the place of the pattern.
+    let along = !gaps.is_empty();
     // A pattern whose width divides 32 has one word for the whole row.
     let (w0, w1) = (
         settings.pattern.word(0, u32::from(y)),
@@ -101,6 +105,9 @@ pub(super) fn emit_row<K: SpanSink, P: Palette<Color = K::Color>>(
         }
         if dashed {
             let h = hidden.get(k).copied().unwrap_or(0);
+            if along {
+                return v | (h & !gaps.get(k).copied().unwrap_or(0));
+            }
             let pattern = if w0 == w1 {
                 w0
             } else {
