@@ -91,7 +91,7 @@ impl Phase {
 /// The fractional part of `x` (`x - floor(x)`) in `2^-32` units; 0 when `x` has
 /// no fractional bits in `f32` (or is not finite).
 fn turns(x: f32) -> u32 {
-    if !(x.abs() < 8_388_608.0) {
+    if !x.is_finite() || x.abs() >= 8_388_608.0 {
         return 0;
     }
     let i = x as i32;
