@@ -30,6 +30,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
     ) -> Result<Stats, Error<K::Error>> {
         let viewport = sink.viewport();
         let s = Frac::U32;
+        self.dashing = Dashing::of(settings);
         self.check(baked, viewport, ws, R::ACTIVE)
             .map_err(Error::widen)?;
         let mesh = baked.mesh();
@@ -69,7 +70,10 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         let row = row.get_mut(..width).unwrap_or_default();
         clear_row(row);
         let words = width.div_ceil(32);
-        let masks = masks.get_mut(..2 * words).unwrap_or_default();
+        let masks = masks
+            .get_mut(..Dashing::masks(self.dashing) * words)
+            .unwrap_or_default();
+        let on = self.dashing.map_or(0, |d| d.on);
         let mut pool_used = 0usize;
         let mut shades = Shades {
             planes: baked.planes(),
@@ -110,7 +114,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                         .map_err(Error::widen)?;
                     e = line_links.get(usize::from(e)).copied().unwrap_or(NONE);
                 }
-                let (visible, hidden) = masks.split_at_mut(words);
+                let (visible, hidden, gaps) = dash::split(masks, words);
                 let cache: &[FastVertex] = vertices;
                 let beside = |face: u16, ends: &[(i16, i16); 2], e: (i32, i32)| {
                     let corners = mesh.face(usize::from(face));
@@ -133,19 +137,16 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                     entries: slopes,
                     facets: &self.facets,
                 };
-                line_row(
-                    &mut self.lines,
-                    yi,
-                    s,
-                    test,
-                    row,
-                    &faces,
-                    &beside,
-                    visible,
-                    hidden,
-                );
+                let lines = &mut self.lines;
+                if gaps.is_empty() {
+                    let gaps = NoGaps;
+                    line_row(lines, yi, s, test, row, &faces, &beside, visible, hidden, gaps);
+                } else {
+                    let gaps = GapMask { words: gaps, on };
+                    line_row(lines, yi, s, test, row, &faces, &beside, visible, hidden, gaps);
+                }
             }
-            let (visible, hidden) = masks.split_at_mut(words);
+            let (visible, hidden, gaps) = dash::split(masks, words);
             if R::ACTIVE {
                 probe_ids(depth, row, ids);
                 probe.row(y as u16, ids.get(..width).unwrap_or(&[]), visible, hidden);
@@ -156,6 +157,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                 row,
                 visible,
                 hidden,
+                gaps,
                 palette,
                 &mut shades,
                 sink,
@@ -198,7 +200,10 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         need(baked.edges().len(), ws.line_links.len())?;
         need(2 * h, ws.heads.len())?;
         need(w, ws.row.len())?;
-        need(2 * w.div_ceil(32), ws.masks.len())?;
+        need(
+            Dashing::masks(self.dashing) * w.div_ceil(32),
+            ws.masks.len(),
+        )?;
         if probe {
             need(w, ws.ids.len())?;
         }
@@ -517,7 +522,10 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         };
         if let Some((a, b)) = ends {
             let ends = [(ea.x, ea.y), (eb.x, eb.y)];
-            if let Some(line) = ActiveLine::new(a, b, edge.faces, ends, map.s) {
+            let along = self
+                .dashing
+                .map(|d| (d, dash::anchor(map, baked, edge, ea, a)));
+            if let Some(line) = ActiveLine::new(a, b, edge.faces, ends, map.s, along) {
                 self.lines.push(line).map_err(|_| Error::CapacityExceeded {
                     needed: LINES + 1,
                     capacity: LINES,

@@ -9,11 +9,16 @@
 //! covering the edge point: so a face with a corner at one of the line's ends hides
 //! the pixel only when its polygon covers the edge point itself (tested exactly,
 //! only for these few).
+//!
+//! With dashes along the edges ([`super::dash`]) a hidden pixel in a gap is also
+//! marked in a third mask, the gaps, which the row's output takes away.
 
 use heapless::Vec;
 
+use super::dash::{Dashing, Phase};
 use super::step::Stepper;
 use super::view::FastVertex;
+use crate::camera::sqrt;
 
 /// The margin's share of the nearer face's slope, in quarter pixels.
 const SLOPE_MARGIN: u32 = 1;
@@ -38,6 +43,8 @@ pub(super) struct ActiveLine {
     bias: u32,
     /// The last nearer face found apart from the line's ends (`NONE` at first).
     apart: u16,
+    /// The dash phase along the line ([`Phase::SCREEN`]: the screen pattern).
+    phase: Phase,
 }
 
 /// What the line test knows of the face nearest at a pixel.
@@ -73,13 +80,15 @@ impl ActiveLine {
     /// The line between `a` and `b` (snapped screen points) with own faces
     /// `faces`; `None` when it has no pixel centre.
     /// `ends` are the edge's vertices' cache positions (which the faces around its
-    /// ends share).
+    /// ends share). `along`: the frame's dashes along the edges, and the anchor
+    /// (`2^-S` px), the unclipped position of the edge's end on `a`'s side.
     pub fn new(
         a: FastVertex,
         b: FastVertex,
         faces: [u16; 2],
         ends: [(i16, i16); 2],
         s: u32,
+        along: Option<(Dashing, (f32, f32))>,
     ) -> Option<Self> {
         let (h, p) = (1i32 << s, 2i32 << s);
         let ((ax, ay), (bx, by)) = (a.half(), b.half());
@@ -117,6 +126,16 @@ impl ActiveLine {
         let c = ((2 * k + 1) * h - u0) as f32;
         let d = (d0 + c * per) as u32;
         let dd = (per * p as f32) as i32 * dir;
+        let phase = match along {
+            Some((dashing, (ax, ay))) => {
+                let anchor = if x_major { ax } else { ay } / (1u32 << s) as f32;
+                let (fu, fv) = (du as f32, dv as f32);
+                let ratio = sqrt(fu * fu + fv * fv) / fu;
+                // `a` is the end at the smaller major coordinate when `forward`.
+                Phase::new(dashing, anchor, forward, ratio, k_first)
+            }
+            None => Phase::SCREEN,
+        };
         Some(Self {
             own: faces.map(|f| 0xFFFF - f),
             ends,
@@ -129,12 +148,14 @@ impl ActiveLine {
             dd,
             bias: dd.unsigned_abs().saturating_add(1 << 16),
             apart: super::NONE,
+            phase,
         })
     }
 
-    /// Draws the line's pixels in row `y` into the visible and hidden masks
-    /// (`row` is the finished row of face entries); returns false once the line
-    /// has no pixel left.
+    /// Draws the line's pixels in row `y` into the visible and hidden masks, and
+    /// its hidden pixels in the gaps of its dashes into `gaps`; `row` is the
+    /// finished row of face entries.
+    /// Returns false once the line has no pixel left.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub fn row(
@@ -147,6 +168,7 @@ impl ActiveLine {
         beside: &impl Fn(u16, &[(i16, i16); 2], (i32, i32)) -> Beside,
         visible: &mut [u32],
         hidden: &mut [u32],
+        gaps: &mut impl Gaps,
     ) -> bool {
         let sh = s + 1;
         let last = i32::from(self.last);
@@ -176,6 +198,7 @@ impl ActiveLine {
                 beside,
                 visible,
                 hidden,
+                gaps,
             );
             if k == last {
                 return false;
@@ -191,7 +214,9 @@ impl ActiveLine {
                 break true;
             }
             if py == y {
-                self.pixel(k, row, k, v.q, d, s, test, slopes, beside, visible, hidden);
+                self.pixel(
+                    k, row, k, v.q, d, s, test, slopes, beside, visible, hidden, gaps,
+                );
             }
             if k == last {
                 break false;
@@ -217,7 +242,8 @@ impl ActiveLine {
     }
 
     /// Marks the line's pixel in column `x` of `row` (none outside it) visible or
-    /// hidden; `k`, `q` and `d` are its centre, minor coordinate and depth.
+    /// hidden, and hidden in a gap; `k`, `q` and `d` are its centre, minor
+    /// coordinate and depth.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn pixel(
@@ -233,6 +259,7 @@ impl ActiveLine {
         beside: &impl Fn(u16, &[(i16, i16); 2], (i32, i32)) -> Beside,
         visible: &mut [u32],
         hidden: &mut [u32],
+        gaps: &mut impl Gaps,
     ) {
         let Some(&cell) = row.get(x as usize) else {
             return;
@@ -245,6 +272,9 @@ impl ActiveLine {
         let x = x as usize;
         if let Some(w) = mask.get_mut(x / 32) {
             *w |= 1 << (x % 32);
+        }
+        if hide {
+            gaps.mark(self.phase, k, x);
         }
     }
 
@@ -348,6 +378,39 @@ fn edge_offset(q: i32, s: u32) -> i32 {
     q - (((q >> (s + 1)) << 1) + 1) * (1i32 << s)
 }
 
+/// Where hidden pixels in the gaps of dashes along the edges are marked: a
+/// type, so that the screen pattern's copy of the line loop has no dash work.
+pub(super) trait Gaps {
+    /// Marks the hidden pixel at centre `k` (column `x`) of a line with dash
+    /// phase `phase` when it is in a gap.
+    fn mark(&mut self, phase: Phase, k: i32, x: usize);
+}
+
+/// The screen pattern: no gaps.
+pub(super) struct NoGaps;
+
+impl Gaps for NoGaps {
+    #[inline(always)]
+    fn mark(&mut self, _: Phase, _: i32, _: usize) {}
+}
+
+/// Dashes along the edges: the row's gap mask and the frame's [`Dashing::on`].
+pub(super) struct GapMask<'a> {
+    pub words: &'a mut [u32],
+    pub on: u32,
+}
+
+impl Gaps for GapMask<'_> {
+    #[inline(always)]
+    fn mark(&mut self, phase: Phase, k: i32, x: usize) {
+        if phase.in_gap(k, self.on) {
+            if let Some(w) = self.words.get_mut(x / 32) {
+                *w |= 1 << (x % 32);
+            }
+        }
+    }
+}
+
 /// Draws every active line's pixels in row `y` into the masks, and drops the
 /// lines that end. Out of line: the row loop's values stay in its registers.
 #[allow(clippy::too_many_arguments)]
@@ -362,10 +425,11 @@ pub(super) fn line_row<const LINES: usize>(
     beside: &impl Fn(u16, &[(i16, i16); 2], (i32, i32)) -> Beside,
     visible: &mut [u32],
     hidden: &mut [u32],
+    mut gaps: impl Gaps,
 ) {
     let mut i = 0;
     while let Some(line) = lines.get_mut(i) {
-        if line.row(y, s, test, row, faces, beside, visible, hidden) {
+        if line.row(y, s, test, row, faces, beside, visible, hidden, &mut gaps) {
             i += 1;
         } else {
             // Panics only for i >= len, and `get_mut(i)` just found it:
