@@ -139,14 +139,6 @@ pub(super) fn anchor(
     (f32::from(clipped.x), f32::from(clipped.y))
 }
 
-/// The line masks of a row: visible, hidden and (with dashes along the edges)
-/// gaps, which is empty otherwise.
-pub(super) fn split(masks: &mut [u32], words: usize) -> (&mut [u32], &mut [u32], &mut [u32]) {
-    let (visible, rest) = masks.split_at_mut(words.min(masks.len()));
-    let (hidden, gaps) = rest.split_at_mut(words.min(rest.len()));
-    (visible, hidden, gaps)
-}
-
 #[cfg(test)]
 mod tests {
     extern crate std;

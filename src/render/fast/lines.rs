@@ -43,8 +43,6 @@ pub(super) struct ActiveLine {
     bias: u32,
     /// The last nearer face found apart from the line's ends (`NONE` at first).
     apart: u16,
-    /// The dash phase along the line ([`Phase::SCREEN`]: the screen pattern).
-    phase: Phase,
 }
 
 /// What the line test knows of the face nearest at a pixel.
@@ -81,7 +79,8 @@ impl ActiveLine {
     /// `faces`; `None` when it has no pixel centre.
     /// `ends` are the edge's vertices' cache positions (which the faces around its
     /// ends share). `along`: the frame's dashes along the edges, and the anchor
-    /// (`2^-S` px), the unclipped position of the edge's end on `a`'s side.
+    /// (`2^-S` px), the unclipped position of the edge's end on `a`'s side;
+    /// the line's dash phase comes with it ([`Phase::SCREEN`] without `along`).
     pub fn new(
         a: FastVertex,
         b: FastVertex,
@@ -89,7 +88,7 @@ impl ActiveLine {
         ends: [(i16, i16); 2],
         s: u32,
         along: Option<(Dashing, (f32, f32))>,
-    ) -> Option<Self> {
+    ) -> Option<(Self, Phase)> {
         let (h, p) = (1i32 << s, 2i32 << s);
         let ((ax, ay), (bx, by)) = (a.half(), b.half());
         let (dx, dy) = (bx - ax, by - ay);
@@ -136,7 +135,7 @@ impl ActiveLine {
             }
             None => Phase::SCREEN,
         };
-        Some(Self {
+        let line = Self {
             own: faces.map(|f| 0xFFFF - f),
             ends,
             k: k as i16,
@@ -148,8 +147,8 @@ impl ActiveLine {
             dd,
             bias: dd.unsigned_abs().saturating_add(1 << 16),
             apart: super::NONE,
-            phase,
-        })
+        };
+        Some((line, phase))
     }
 
     /// Draws the line's pixels in row `y` into the visible and hidden masks, and
@@ -274,7 +273,7 @@ impl ActiveLine {
             *w |= 1 << (x % 32);
         }
         if hide {
-            gaps.mark(self.phase, k, x);
+            gaps.mark(k, x);
         }
     }
 
@@ -379,11 +378,16 @@ fn edge_offset(q: i32, s: u32) -> i32 {
 }
 
 /// Where hidden pixels in the gaps of dashes along the edges are marked: a
-/// type, so that the screen pattern's copy of the line loop has no dash work.
+/// type, so that the screen pattern's copy of the line loop has no dash work
+/// (and the lines' records no phase).
 pub(super) trait Gaps {
-    /// Marks the hidden pixel at centre `k` (column `x`) of a line with dash
-    /// phase `phase` when it is in a gap.
-    fn mark(&mut self, phase: Phase, k: i32, x: usize);
+    /// The line at `i` of the active lines is drawn next.
+    fn line(&mut self, i: usize);
+    /// The line at `i` ended (it is swapped with the last, as the lines are).
+    fn remove(&mut self, i: usize);
+    /// Marks the current line's hidden pixel at centre `k` (column `x`) when it
+    /// is in a gap.
+    fn mark(&mut self, k: i32, x: usize);
 }
 
 /// The screen pattern: no gaps.
@@ -391,19 +395,36 @@ pub(super) struct NoGaps;
 
 impl Gaps for NoGaps {
     #[inline(always)]
-    fn mark(&mut self, _: Phase, _: i32, _: usize) {}
+    fn line(&mut self, _: usize) {}
+    #[inline(always)]
+    fn remove(&mut self, _: usize) {}
+    #[inline(always)]
+    fn mark(&mut self, _: i32, _: usize) {}
 }
 
-/// Dashes along the edges: the row's gap mask and the frame's [`Dashing::on`].
-pub(super) struct GapMask<'a> {
+/// Dashes along the edges: the row's gap mask, the frame's [`Dashing::on`], the
+/// active lines' phases (in the lines' order) and the current line's.
+pub(super) struct GapMask<'a, const LINES: usize> {
     pub words: &'a mut [u32],
     pub on: u32,
+    pub phases: &'a mut Vec<Phase, LINES>,
+    pub phase: Phase,
 }
 
-impl Gaps for GapMask<'_> {
+impl<const LINES: usize> Gaps for GapMask<'_, LINES> {
     #[inline(always)]
-    fn mark(&mut self, phase: Phase, k: i32, x: usize) {
-        if phase.in_gap(k, self.on) {
+    fn line(&mut self, i: usize) {
+        self.phase = self.phases.get(i).copied().unwrap_or(Phase::SCREEN);
+    }
+    #[inline(always)]
+    fn remove(&mut self, i: usize) {
+        if i < self.phases.len() {
+            self.phases.swap_remove(i);
+        }
+    }
+    #[inline(always)]
+    fn mark(&mut self, k: i32, x: usize) {
+        if self.phase.in_gap(k, self.on) {
             if let Some(w) = self.words.get_mut(x / 32) {
                 *w |= 1 << (x % 32);
             }
@@ -429,9 +450,11 @@ pub(super) fn line_row<const LINES: usize>(
 ) {
     let mut i = 0;
     while let Some(line) = lines.get_mut(i) {
+        gaps.line(i);
         if line.row(y, s, test, row, faces, beside, visible, hidden, &mut gaps) {
             i += 1;
         } else {
+            gaps.remove(i);
             // Panics only for i >= len, and `get_mut(i)` just found it:
             // unreachable. (A form without the panic path cost the
             // suzanne frame 1 %, measured.)

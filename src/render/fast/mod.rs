@@ -53,8 +53,8 @@
 mod active;
 mod baked;
 mod clip;
-mod depth_row;
 mod dash;
+mod depth_row;
 mod facets;
 mod holes;
 mod lines;
@@ -82,7 +82,7 @@ use crate::mesh::{bit, set_bit, EdgeKind, Viewpoint};
 use crate::{Error, SpanSink, Viewport};
 use active::ActiveFacets;
 use clip::{clip_polygon, clip_segment};
-use dash::Dashing;
+use dash::{Dashing, Phase};
 use depth_row::clear_row;
 use facets::{facet, ClipPolygon, CornerSource, Corners, Facet};
 use holes::HoleBoxes;
@@ -154,6 +154,9 @@ impl FastWorkspace<'_> {
 pub struct FastRenderer<Frac: LeEqU32, const FACETS: usize, const LINES: usize> {
     facets: ActiveFacets<FACETS>,
     lines: Vec<ActiveLine, LINES>,
+    /// The active lines' dash phases, in their order (only with dashes along
+    /// the edges).
+    phases: Vec<Phase, LINES>,
     /// The frame's dashes along the edges (`None`: the screen pattern).
     dashing: Option<Dashing>,
     _frac: PhantomData<Frac>,
@@ -217,6 +220,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         Self {
             facets: ActiveFacets::new(),
             lines: Vec::new(),
+            phases: Vec::new(),
             dashing: None,
             _frac: PhantomData,
         }

@@ -69,17 +69,15 @@ impl Shades<'_> {
 }
 
 /// Sends row `y` to `sink`: `row` holds the nearest face entries, `visible` and
-/// `hidden` the line masks (`visible` becomes the drawn line pixels), `gaps` the
-/// hidden pixels in the gaps of dashes along the edges (empty with the screen
-/// pattern; they leave `hidden`). Returns the spans sent.
+/// `hidden` the line masks (`visible` becomes the drawn line pixels). Returns the
+/// spans sent.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn emit_row<K: SpanSink, P: Palette<Color = K::Color>>(
     y: u16,
     settings: &Settings,
     row: &[u32],
     visible: &mut [u32],
-    hidden: &mut [u32],
-    gaps: &[u32],
+    hidden: &[u32],
     palette: &P,
     shades: &mut Shades<'_>,
     sink: &mut K,
@@ -92,20 +90,11 @@ pub(super) fn emit_row<K: SpanSink, P: Palette<Color = K::Color>>(
     };
     let dashed = matches!(settings.mode, DrawMode::Dashed | DrawMode::SurfacesDashed);
     let lines = settings.mode != DrawMode::Surfaces;
-    // Dashes along the edges take the place of the pattern: their gaps leave
-    // the hidden mask, and every hidden pixel left is drawn.
-    for (h, g) in hidden.iter_mut().zip(gaps) {
-        *h &= !g;
-    }
     // A pattern whose width divides 32 has one word for the whole row.
-    let (w0, w1) = if gaps.is_empty() {
-        (
-            settings.pattern.word(0, u32::from(y)),
-            settings.pattern.word(32, u32::from(y)),
-        )
-    } else {
-        (u32::MAX, u32::MAX)
-    };
+    let (w0, w1) = (
+        settings.pattern.word(0, u32::from(y)),
+        settings.pattern.word(32, u32::from(y)),
+    );
     let line_word = |k: usize, v: u32| -> u32 {
         if !lines {
             return 0;
