@@ -174,7 +174,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                         words: gaps,
                         on,
                         phases: &mut self.phases,
-                        phase: Phase::SCREEN,
+                        line: 0,
                     };
                     line_row(
                         lines, yi, s, test, row, &faces, &beside, visible, hidden, gaps,

@@ -403,18 +403,19 @@ impl Gaps for NoGaps {
 }
 
 /// Dashes along the edges: the row's gap mask, the frame's [`Dashing::on`], the
-/// active lines' phases (in the lines' order) and the current line's.
+/// active lines' phases (in the lines' order) and the current line's index
+/// (its phase is read only for its hidden pixels).
 pub(super) struct GapMask<'a, const LINES: usize> {
     pub words: &'a mut [u32],
     pub on: u32,
     pub phases: &'a mut Vec<Phase, LINES>,
-    pub phase: Phase,
+    pub line: usize,
 }
 
 impl<const LINES: usize> Gaps for GapMask<'_, LINES> {
     #[inline(always)]
     fn line(&mut self, i: usize) {
-        self.phase = self.phases.get(i).copied().unwrap_or(Phase::SCREEN);
+        self.line = i;
     }
     #[inline(always)]
     fn remove(&mut self, i: usize) {
@@ -424,7 +425,8 @@ impl<const LINES: usize> Gaps for GapMask<'_, LINES> {
     }
     #[inline(always)]
     fn mark(&mut self, k: i32, x: usize) {
-        if self.phase.in_gap(k, self.on) {
+        let phase = self.phases.get(self.line).copied();
+        if phase.is_some_and(|p| p.in_gap(k, self.on)) {
             if let Some(w) = self.words.get_mut(x / 32) {
                 *w |= 1 << (x % 32);
             }
