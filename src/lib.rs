@@ -63,7 +63,7 @@ pub use mesh::{
 pub use order::{BspNode, BspSizes, BspStorage, BspTree};
 pub use pattern::Pattern;
 pub use render::{
-    CodeFillRenderer, CodeWorkspace, Cull, DepthOrder, DrawMode, GreyPalette, GreyShades,
+    CodeFillRenderer, CodeWorkspace, Cull, Dashes, DepthOrder, DrawMode, GreyPalette, GreyShades,
     MonoPalette, Palette, SchemeCoding, SchemeRenderer, Settings, SmallFace, SolidPalette, Stats,
     Visibility, Workspace, ZBufferRenderer,
 };

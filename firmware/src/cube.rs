@@ -6,8 +6,8 @@
 use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
 use pbuffer::render::{storage_rows, ProjectedVertex};
 use pbuffer::{
-    packed_len, Camera, Cull, DrawMode, Error, MonoPalette, PackedFramebuffer, Pattern, Projection,
-    Settings, Stats, Workspace, ZBufferRenderer,
+    packed_len, Camera, Cull, Dashes, DrawMode, Error, MonoPalette, PackedFramebuffer, Pattern,
+    Projection, Settings, Stats, Workspace, ZBufferRenderer,
 };
 
 /// The frame.
@@ -68,6 +68,7 @@ pub fn render_cube(fb: &mut CubeFrame, eye: [f32; 3]) -> Result<Stats, Error> {
         mode: DrawMode::Dashed,
         cull: Cull::Auto,
         pattern: Pattern::PAPER,
+        dashes: Dashes::Screen,
     };
     let mut renderer = ZBufferRenderer::<fixed::types::extra::U4, 16, 16>::new();
     renderer.render(

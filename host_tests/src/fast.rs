@@ -80,7 +80,8 @@ impl FastBuffers {
             line_links: vec![0; edges],
             heads: vec![0; 2 * h],
             row: vec![0; w],
-            masks: vec![0; 2 * w.div_ceil(32)],
+            // Visible, hidden and the gaps of dashes along the edges.
+            masks: vec![0; 3 * w.div_ceil(32)],
             pool: vec![FastVertex::default(); pool],
             ids: vec![0; w],
             slopes: vec![0; faces],

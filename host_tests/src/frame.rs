@@ -159,6 +159,9 @@ pub struct RenderSpec {
     pub band: usize,
     /// Pattern name (see `pbuffer::Pattern::by_name`).
     pub pattern: String,
+    /// How hidden lines are dashed (the fast engine draws dashes along the edges;
+    /// the others the pattern).
+    pub dashes: pbuffer::Dashes,
 }
 
 impl Default for RenderSpec {
@@ -174,6 +177,7 @@ impl Default for RenderSpec {
             depth_bits: 32,
             band: 240,
             pattern: "paper".into(),
+            dashes: pbuffer::Dashes::Screen,
         }
     }
 }

@@ -235,6 +235,7 @@ pub fn settings(spec: &RenderSpec) -> Result<Settings, String> {
             CullSpec::Auto => Cull::Auto,
         },
         pattern,
+        dashes: spec.dashes,
     })
 }
 

@@ -34,8 +34,8 @@ use pbuffer::render::{
     storage_rows, BakedMesh, CompactEdge, Depth, FacePlane, FastRenderer, ProjectedVertex, RowCodes,
 };
 use pbuffer::{
-    Camera, CodeFillRenderer, CodeWorkspace, Cull, DepthOrder, DrawMode, Error, MonoPalette,
-    Pattern, Settings, Stats, Visibility, Workspace, ZBufferRenderer,
+    Camera, CodeFillRenderer, CodeWorkspace, Cull, Dashes, DepthOrder, DrawMode, Error,
+    MonoPalette, Pattern, Settings, Stats, Visibility, Workspace, ZBufferRenderer,
 };
 
 /// Mesh + camera cases of the render property; `PBUFFER_FUZZ_SCENES` asks for
@@ -362,6 +362,7 @@ fn valid_scenes_never_panic_or_write_outside_the_target() {
                 ][rng.below(5) as usize],
                 cull: [Cull::On, Cull::Off, Cull::Auto][rng.below(3) as usize],
                 pattern: Pattern::PAPER,
+                dashes: Dashes::Screen,
             },
             w,
             h,

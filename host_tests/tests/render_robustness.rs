@@ -15,8 +15,8 @@ use host_tests::random::Rng;
 use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
 use pbuffer::render::{storage_rows, ProjectedVertex};
 use pbuffer::{
-    Camera, Cull, DrawMode, MonoPalette, Pattern, Projection, Settings, Span, SpanSink, Viewport,
-    Workspace, ZBufferRenderer,
+    Camera, Cull, Dashes, DrawMode, MonoPalette, Pattern, Projection, Settings, Span, SpanSink,
+    Viewport, Workspace, ZBufferRenderer,
 };
 
 /// Checks every span: inside the viewport, no pixel twice in one frame.
@@ -148,6 +148,7 @@ fn hostile_meshes_and_cameras_never_panic_or_overdraw() {
             mode,
             cull,
             pattern: Pattern::PAPER,
+            dashes: Dashes::Screen,
         };
         let (wu, bu) = (usize::from(w), usize::from(band));
         let mut vertices = vec![ProjectedVertex::default(); arrays.vertices.len()];

@@ -11,7 +11,7 @@ use fixed::types::extra::{U1, U4};
 use super::*;
 use crate::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
 use crate::render::{Cull, ProjectedVertex, Workspace, ZBufferRenderer};
-use crate::{Camera, FillSolid, Pattern, Projection};
+use crate::{Camera, Dashes, FillSolid, Pattern, Projection};
 
 fn v(x: i32, y: i32) -> ScreenVertex {
     ScreenVertex { x, y, q: 1 << 30 }
@@ -123,6 +123,7 @@ where
         mode,
         cull: Cull::Off,
         pattern: Pattern::default(),
+        dashes: Dashes::Screen,
     };
     let (w, band) = (64usize, 7u16);
     let mut vertices = vec![ProjectedVertex::default(); v.len()];

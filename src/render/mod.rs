@@ -100,6 +100,34 @@ pub enum Cull {
     Auto,
 }
 
+/// How hidden lines are dashed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Dashes {
+    /// By the P-buffer's screen pattern ([`Settings::pattern`]): a hidden pixel is
+    /// drawn where the pattern's bit at its screen position is 1, so dashes change
+    /// length with a line's slope.
+    #[default]
+    Screen,
+    /// As a drawing office dashes them: `dash` pixels on, `gap` pixels off,
+    /// measured along each edge (Euclidean length) from the same end of the edge
+    /// in every frame, so the dashes do not crawl as the model turns. The pattern
+    /// is not used. Drawn by the fast engine ([`FastRenderer`]); the other engines
+    /// draw [`Dashes::Screen`]. A `gap` of 0 draws hidden lines solid.
+    Along {
+        /// Pixels of a dash.
+        dash: u8,
+        /// Pixels of a gap.
+        gap: u8,
+    },
+}
+
+impl Dashes {
+    /// ISO 128 hidden line (line type 02, dashed) for lines one pixel wide:
+    /// dashes of 12 line widths, gaps of 3.
+    pub const ISO: Self = Self::Along { dash: 12, gap: 3 };
+}
+
 /// How to draw a frame.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -110,6 +138,8 @@ pub struct Settings {
     pub cull: Cull,
     /// The P-buffer pattern for hidden lines.
     pub pattern: Pattern,
+    /// How hidden lines are dashed: by the pattern (the default) or along each edge.
+    pub dashes: Dashes,
 }
 
 /// Rows of depth and id storage for bands of `band_rows` rows in a frame `height`

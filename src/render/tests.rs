@@ -120,6 +120,7 @@ fn render(
         mode,
         cull: Cull::Auto,
         pattern: Pattern::PAPER,
+        dashes: Dashes::Screen,
     };
     let mut renderer = ZBufferRenderer::<U4, 16, 16>::new();
     let stats = renderer

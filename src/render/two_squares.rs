@@ -13,7 +13,7 @@ use super::transform::ProjectedVertex;
 use super::{Cull, DrawMode, Settings, Stats};
 use crate::camera::Camera;
 use crate::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
-use crate::{Error, PackedFramebuffer, Pattern, Projection};
+use crate::{Dashes, Error, PackedFramebuffer, Pattern, Projection};
 
 /// The frame buffer the scene is drawn into.
 pub(super) type Frame32 = PackedFramebuffer<32, 32, { crate::packed_len(32, 32) }>;
@@ -81,6 +81,7 @@ pub(super) fn frame(
         mode: DrawMode::Surfaces,
         cull: Cull::Off,
         pattern: Pattern::PAPER,
+        dashes: Dashes::Screen,
     };
     let mut vertices = vec![ProjectedVertex::default(); v.len()];
     let (mut drawn, mut features) = (vec![0u32; 1], vec![0u32; 1]);

@@ -13,7 +13,7 @@ use crate::render::{
     storage_rows, Cull, DrawMode, MonoPalette, ProjectedVertex, Settings, Workspace,
     ZBufferRenderer,
 };
-use crate::{Pattern, Projection};
+use crate::{Dashes, Pattern, Projection};
 
 /// The vertices of [`twisted_quad_and_wall`]'s two faces (0..4 and 4..8).
 const QUAD_AND_WALL: [[f32; 3]; 8] = [
@@ -60,6 +60,7 @@ fn twisted_quad_and_wall_kept(band: u16, planar: Option<&[u32]>) -> Vec<u16> {
         mode: DrawMode::Surfaces,
         cull: Cull::Off,
         pattern: Pattern::PAPER,
+        dashes: Dashes::Screen,
     };
     let stored = usize::from(storage_rows(band, 32));
     let mut vertices = vec![ProjectedVertex::default(); v.len()];

@@ -9,7 +9,7 @@ use fixed::types::extra::U4;
 use pbuffer::mesh::{EdgeAdjacency, Mesh};
 use pbuffer::render::{BakedMesh, FastRenderer, FastVertex, FastWorkspace, ProjectedVertex};
 use pbuffer::{
-    Camera, CodeFillRenderer, CodeWorkspace, Cull, DrawMode, Error, MonoPalette, Pattern,
+    Camera, CodeFillRenderer, CodeWorkspace, Cull, Dashes, DrawMode, Error, MonoPalette, Pattern,
     Projection, Settings, SpanSink, Stats,
 };
 
@@ -334,6 +334,7 @@ fn settings(mode: DrawMode) -> Settings {
         mode,
         cull: Cull::Auto,
         pattern: Pattern::PAPER,
+        dashes: Dashes::Screen,
     }
 }
 

@@ -130,6 +130,13 @@ pub struct Flags {
     #[arg(long, value_name = "NAME", value_parser = values::pattern, allow_hyphen_values = true,
           help_heading = RENDERING, verbatim_doc_comment)]
     pub pattern: Option<String>,
+    /// How hidden lines are dashed: screen (by --pattern, the default) |
+    /// iso (ISO 128: dashes of 12 px, gaps of 3, measured along each edge
+    /// from the same end in every frame) | DASH,GAP (pixels along the edge,
+    /// 1..=255 each); along the edges with the fast engine only
+    #[arg(long, value_name = "screen|iso|DASH,GAP", value_parser = values::dashes,
+          allow_hyphen_values = true, help_heading = RENDERING, verbatim_doc_comment)]
+    pub dashes: Option<pbuffer::Dashes>,
 
     /// The picture as a display shows it
     /// (default docs/render.png without SCENE)

@@ -26,7 +26,7 @@ pub struct Options {
     /// `--far F`.
     pub far: Option<f64>,
     /// The frame: size, crease, culling, mode, engine, sub-pixel and depth bits,
-    /// band, pattern.
+    /// band, pattern, dashes.
     pub spec: RenderSpec,
     /// Whether `--engine` was given (else the fast engine, or the code-fill engine
     /// for a flag only the exact engines have).

@@ -55,6 +55,7 @@ fn options(f: Flags) -> Result<Options, String> {
         // Set by `check` once the height is known.
         band: d.spec.band,
         pattern: f.pattern.unwrap_or(d.spec.pattern),
+        dashes: f.dashes.unwrap_or(d.spec.dashes),
     };
     // The last of --fov and --ortho given wins (they override each other in clap).
     let projection = match (f.fov, f.ortho) {
@@ -108,6 +109,13 @@ fn check(mut o: Options) -> Result<Options, String> {
         return Err(format!(
             "--scheme: {} is drawn by the code-fill engine; --engine {} has no surface codes",
             o.scheme.name(),
+            o.spec.engine.name()
+        ));
+    }
+    if o.spec.dashes != pbuffer::Dashes::Screen && o.spec.engine != EngineSpec::Fast {
+        return Err(format!(
+            "--dashes: dashes along the edges are drawn by the fast engine; --engine {} \
+             dashes by the screen pattern only",
             o.spec.engine.name()
         ));
     }

@@ -170,6 +170,26 @@ pub fn pattern(s: &str) -> Result<String, String> {
     }
 }
 
+/// `--dashes screen|iso|DASH,GAP`: how hidden lines are dashed.
+pub fn dashes(s: &str) -> Result<pbuffer::Dashes, String> {
+    match given(s)? {
+        "screen" => Ok(pbuffer::Dashes::Screen),
+        "iso" => Ok(pbuffer::Dashes::ISO),
+        v => v
+            .split_once(',')
+            .and_then(|(d, g)| {
+                let len = |t: &str| t.trim().parse::<u8>().ok().filter(|&n| n > 0);
+                Some(pbuffer::Dashes::Along {
+                    dash: len(d)?,
+                    gap: len(g)?,
+                })
+            })
+            .ok_or_else(|| {
+                format!("`{s}` is not screen, iso or DASH,GAP (two lengths in pixels, 1..=255)")
+            }),
+    }
+}
+
 /// `--look L`: the colour scheme of the PNG.
 pub fn look(s: &str) -> Result<Look, String> {
     match given(s)? {

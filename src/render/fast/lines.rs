@@ -9,11 +9,16 @@
 //! covering the edge point: so a face with a corner at one of the line's ends hides
 //! the pixel only when its polygon covers the edge point itself (tested exactly,
 //! only for these few).
+//!
+//! With dashes along the edges ([`super::dash`]) a hidden pixel in a gap is also
+//! marked in a third mask, the gaps, which the row's output takes away.
 
 use heapless::Vec;
 
+use super::dash::{Dashing, Phase};
 use super::step::Stepper;
 use super::view::FastVertex;
+use crate::camera::sqrt;
 
 /// The margin's share of the nearer face's slope, in quarter pixels.
 const SLOPE_MARGIN: u32 = 1;
@@ -73,14 +78,17 @@ impl ActiveLine {
     /// The line between `a` and `b` (snapped screen points) with own faces
     /// `faces`; `None` when it has no pixel centre.
     /// `ends` are the edge's vertices' cache positions (which the faces around its
-    /// ends share).
+    /// ends share). `along`: the frame's dashes along the edges, and the anchor
+    /// (`2^-S` px), the unclipped position of the edge's end on `a`'s side;
+    /// the line's dash phase comes with it ([`Phase::SCREEN`] without `along`).
     pub fn new(
         a: FastVertex,
         b: FastVertex,
         faces: [u16; 2],
         ends: [(i16, i16); 2],
         s: u32,
-    ) -> Option<Self> {
+        along: Option<(Dashing, (f32, f32))>,
+    ) -> Option<(Self, Phase)> {
         let (h, p) = (1i32 << s, 2i32 << s);
         let ((ax, ay), (bx, by)) = (a.half(), b.half());
         let (dx, dy) = (bx - ax, by - ay);
@@ -117,7 +125,17 @@ impl ActiveLine {
         let c = ((2 * k + 1) * h - u0) as f32;
         let d = (d0 + c * per) as u32;
         let dd = (per * p as f32) as i32 * dir;
-        Some(Self {
+        let phase = match along {
+            Some((dashing, (ax, ay))) => {
+                let anchor = if x_major { ax } else { ay } / (1u32 << s) as f32;
+                let (fu, fv) = (du as f32, dv as f32);
+                let ratio = sqrt(fu * fu + fv * fv) / fu;
+                // `a` is the end at the smaller major coordinate when `forward`.
+                Phase::new(dashing, anchor, forward, ratio, k_first)
+            }
+            None => Phase::SCREEN,
+        };
+        let line = Self {
             own: faces.map(|f| 0xFFFF - f),
             ends,
             k: k as i16,
@@ -129,12 +147,14 @@ impl ActiveLine {
             dd,
             bias: dd.unsigned_abs().saturating_add(1 << 16),
             apart: super::NONE,
-        })
+        };
+        Some((line, phase))
     }
 
-    /// Draws the line's pixels in row `y` into the visible and hidden masks
-    /// (`row` is the finished row of face entries); returns false once the line
-    /// has no pixel left.
+    /// Draws the line's pixels in row `y` into the visible and hidden masks, and
+    /// its hidden pixels in the gaps of its dashes into `gaps`; `row` is the
+    /// finished row of face entries.
+    /// Returns false once the line has no pixel left.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub fn row(
@@ -147,6 +167,7 @@ impl ActiveLine {
         beside: &impl Fn(u16, &[(i16, i16); 2], (i32, i32)) -> Beside,
         visible: &mut [u32],
         hidden: &mut [u32],
+        gaps: &mut impl Gaps,
     ) -> bool {
         let sh = s + 1;
         let last = i32::from(self.last);
@@ -176,6 +197,7 @@ impl ActiveLine {
                 beside,
                 visible,
                 hidden,
+                gaps,
             );
             if k == last {
                 return false;
@@ -191,7 +213,9 @@ impl ActiveLine {
                 break true;
             }
             if py == y {
-                self.pixel(k, row, k, v.q, d, s, test, slopes, beside, visible, hidden);
+                self.pixel(
+                    k, row, k, v.q, d, s, test, slopes, beside, visible, hidden, gaps,
+                );
             }
             if k == last {
                 break false;
@@ -217,7 +241,8 @@ impl ActiveLine {
     }
 
     /// Marks the line's pixel in column `x` of `row` (none outside it) visible or
-    /// hidden; `k`, `q` and `d` are its centre, minor coordinate and depth.
+    /// hidden, and hidden in a gap; `k`, `q` and `d` are its centre, minor
+    /// coordinate and depth.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn pixel(
@@ -233,6 +258,7 @@ impl ActiveLine {
         beside: &impl Fn(u16, &[(i16, i16); 2], (i32, i32)) -> Beside,
         visible: &mut [u32],
         hidden: &mut [u32],
+        gaps: &mut impl Gaps,
     ) {
         let Some(&cell) = row.get(x as usize) else {
             return;
@@ -245,6 +271,9 @@ impl ActiveLine {
         let x = x as usize;
         if let Some(w) = mask.get_mut(x / 32) {
             *w |= 1 << (x % 32);
+        }
+        if hide {
+            gaps.mark(k, x);
         }
     }
 
@@ -348,6 +377,63 @@ fn edge_offset(q: i32, s: u32) -> i32 {
     q - (((q >> (s + 1)) << 1) + 1) * (1i32 << s)
 }
 
+/// Where hidden pixels in the gaps of dashes along the edges are marked: a
+/// type, so that the screen pattern's copy of the line loop has no dash work
+/// (and the lines' records no phase).
+pub(super) trait Gaps {
+    /// The line at `i` of the active lines is drawn next.
+    fn line(&mut self, i: usize);
+    /// The line at `i` ended (it is swapped with the last, as the lines are).
+    fn remove(&mut self, i: usize);
+    /// Marks the current line's hidden pixel at centre `k` (column `x`) when it
+    /// is in a gap.
+    fn mark(&mut self, k: i32, x: usize);
+}
+
+/// The screen pattern: no gaps.
+pub(super) struct NoGaps;
+
+impl Gaps for NoGaps {
+    #[inline(always)]
+    fn line(&mut self, _: usize) {}
+    #[inline(always)]
+    fn remove(&mut self, _: usize) {}
+    #[inline(always)]
+    fn mark(&mut self, _: i32, _: usize) {}
+}
+
+/// Dashes along the edges: the row's gap mask, the frame's [`Dashing::on`], the
+/// active lines' phases (in the lines' order) and the current line's index
+/// (its phase is read only for its hidden pixels).
+pub(super) struct GapMask<'a, const LINES: usize> {
+    pub words: &'a mut [u32],
+    pub on: u32,
+    pub phases: &'a mut Vec<Phase, LINES>,
+    pub line: usize,
+}
+
+impl<const LINES: usize> Gaps for GapMask<'_, LINES> {
+    #[inline(always)]
+    fn line(&mut self, i: usize) {
+        self.line = i;
+    }
+    #[inline(always)]
+    fn remove(&mut self, i: usize) {
+        if i < self.phases.len() {
+            self.phases.swap_remove(i);
+        }
+    }
+    #[inline(always)]
+    fn mark(&mut self, k: i32, x: usize) {
+        let phase = self.phases.get(self.line).copied();
+        if phase.is_some_and(|p| p.in_gap(k, self.on)) {
+            if let Some(w) = self.words.get_mut(x / 32) {
+                *w |= 1 << (x % 32);
+            }
+        }
+    }
+}
+
 /// Draws every active line's pixels in row `y` into the masks, and drops the
 /// lines that end. Out of line: the row loop's values stay in its registers.
 #[allow(clippy::too_many_arguments)]
@@ -362,12 +448,15 @@ pub(super) fn line_row<const LINES: usize>(
     beside: &impl Fn(u16, &[(i16, i16); 2], (i32, i32)) -> Beside,
     visible: &mut [u32],
     hidden: &mut [u32],
+    mut gaps: impl Gaps,
 ) {
     let mut i = 0;
     while let Some(line) = lines.get_mut(i) {
-        if line.row(y, s, test, row, faces, beside, visible, hidden) {
+        gaps.line(i);
+        if line.row(y, s, test, row, faces, beside, visible, hidden, &mut gaps) {
             i += 1;
         } else {
+            gaps.remove(i);
             // Panics only for i >= len, and `get_mut(i)` just found it:
             // unreachable. (A form without the panic path cost the
             // suzanne frame 1 %, measured.)

@@ -53,6 +53,7 @@
 mod active;
 mod baked;
 mod clip;
+mod dash;
 mod depth_row;
 mod facets;
 mod holes;
@@ -81,10 +82,11 @@ use crate::mesh::{bit, set_bit, EdgeKind, Viewpoint};
 use crate::{Error, SpanSink, Viewport};
 use active::ActiveFacets;
 use clip::{clip_polygon, clip_segment};
+use dash::{Dashing, Phase};
 use depth_row::clear_row;
 use facets::{facet, ClipPolygon, CornerSource, Corners, Facet};
 use holes::HoleBoxes;
-use lines::{line_row, ActiveLine, Beside, FaceSlopes, LineTest};
+use lines::{line_row, ActiveLine, Beside, FaceSlopes, GapMask, LineTest, NoGaps};
 use polygon::{convex, covers, folds, turns_away};
 use row_out::{emit_row, Shades};
 use view::{guard_px, ScreenMap};
@@ -99,7 +101,7 @@ const NONE: u16 = 0xFFFF;
 /// Storage the caller lends for one frame of the fast engine. Sizes: `vertices` >=
 /// the mesh's vertices; `facing` >= faces / 32 words; `face_links` >= faces;
 /// `line_links` >= edges; `heads` >= 2 x height; `row` >= width; `masks` >= 2 x
-/// ceil(width / 32); `pool` holds the corners of the frame's clipped faces (0 when
+/// ceil(width / 32) (3 x with [`Dashes::Along`](super::Dashes::Along)); `pool` holds the corners of the frame's clipped faces (0 when
 /// nothing is clipped; at most 65,535 are used); `slopes` >= faces; `ids` >= width
 /// when a [`FrameProbe`] looks at the rows, else it may be empty.
 /// [`FastWorkspace::bytes`] sums them.
@@ -117,7 +119,8 @@ pub struct FastWorkspace<'s> {
     pub heads: &'s mut [u16],
     /// The row: nearest face entries.
     pub row: &'s mut [u32],
-    /// The row's visible then hidden line masks.
+    /// The row's visible then hidden line masks (then the gaps of dashes along
+    /// the edges).
     pub masks: &'s mut [u32],
     /// Corners of clipped faces.
     pub pool: &'s mut [FastVertex],
@@ -151,6 +154,11 @@ impl FastWorkspace<'_> {
 pub struct FastRenderer<Frac: LeEqU32, const FACETS: usize, const LINES: usize> {
     facets: ActiveFacets<FACETS>,
     lines: Vec<ActiveLine, LINES>,
+    /// The active lines' dash phases, in their order (only with dashes along
+    /// the edges).
+    phases: Vec<Phase, LINES>,
+    /// The frame's dashes along the edges (`None`: the screen pattern).
+    dashing: Option<Dashing>,
     _frac: PhantomData<Frac>,
 }
 
@@ -212,6 +220,8 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         Self {
             facets: ActiveFacets::new(),
             lines: Vec::new(),
+            phases: Vec::new(),
+            dashing: None,
             _frac: PhantomData,
         }
     }

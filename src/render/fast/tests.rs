@@ -12,7 +12,7 @@ use fixed::types::extra::{U4, U7};
 use super::*;
 use crate::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
 use crate::render::{DrawMode, SolidPalette};
-use crate::{FillSolid, Pattern, Projection};
+use crate::{Dashes, FillSolid, Pattern, Projection};
 
 /// A unit square in the z = 0 plane as two triangles sharing the diagonal 0-2.
 const SQUARE: [[f32; 3]; 4] = [[-1., -1., 0.], [1., -1., 0.], [1., 1., 0.], [-1., 1., 0.]];
@@ -99,6 +99,7 @@ fn settings(mode: DrawMode) -> Settings {
         mode,
         cull: Cull::Off,
         pattern: Pattern::PAPER,
+        dashes: Dashes::Screen,
     }
 }
 

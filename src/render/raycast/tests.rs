@@ -12,7 +12,7 @@ use super::trace::{fold, Candidates, Hit};
 use super::*;
 use crate::mesh::{HalfEdgeRecord, MeshEdge};
 use crate::render::{Cull, DrawMode, MonoPalette, Workspace, ZBufferRenderer};
-use crate::{Pattern, Projection, Span, Viewport};
+use crate::{Dashes, Pattern, Projection, Span, Viewport};
 use embedded_graphics_core::pixelcolor::BinaryColor;
 
 /// A target of any size that keeps nothing (the probe sees the ids).
@@ -132,6 +132,7 @@ fn render_with(
         mode: DrawMode::Surfaces,
         cull: Cull::Off,
         pattern: Pattern::PAPER,
+        dashes: Dashes::Screen,
     };
     let mut target = Blank(Viewport {
         width: w as u16,

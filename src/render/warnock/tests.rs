@@ -10,7 +10,7 @@ use fixed::types::extra::U4;
 use super::*;
 use crate::mesh::{HalfEdgeRecord, MeshEdge};
 use crate::render::{storage_rows, Cull, DrawMode, MonoPalette, Workspace, ZBufferRenderer};
-use crate::{PackedFramebuffer, Pattern, Projection};
+use crate::{Dashes, PackedFramebuffer, Pattern, Projection};
 
 const W: usize = 96;
 const H: usize = 64;
@@ -53,6 +53,7 @@ fn settings() -> Settings {
         mode: DrawMode::Surfaces,
         cull: Cull::Off,
         pattern: Pattern::PAPER,
+        dashes: Dashes::Screen,
     }
 }
 
