@@ -9,7 +9,8 @@ use pbuffer::render::{BakedMesh, CompactEdge, FacePlane};
 
 use crate::cli::Look;
 
-#[allow(dead_code, missing_docs)]
+// The firmware's own file: its buffers have a `const fn new` (for `static`s), no `Default`.
+#[allow(dead_code, missing_docs, clippy::new_without_default)]
 #[path = "../../examples/embedded/src/scenes.rs"]
 pub mod scenes;
 
