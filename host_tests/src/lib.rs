@@ -6,6 +6,7 @@ pub mod callgrind;
 pub mod cli;
 pub mod engines;
 pub mod fast;
+pub mod firmware;
 pub mod fit;
 pub mod frame;
 pub mod grey;

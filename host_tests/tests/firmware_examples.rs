@@ -3,7 +3,8 @@
 //! suzanne is parsed by the same converter (`examples/embedded/obj.rs`) that the
 //! firmware's build.rs runs, and the fast engine's constants and planarity bits are
 //! made as build.rs makes them (`BakedMesh::bake`, `pbuffer::order::planar_faces`, here
-//! at run time). Prints one line per frame,
+//! at run time). The instrument-panel demo's frames come from the same `instrument`
+//! module through `host_tests::firmware`. Prints one line per frame,
 //!
 //! ```text
 //! frame EXAMPLE N hash=HEX
@@ -25,6 +26,7 @@ mod plain;
 #[path = "../../examples/embedded/src/scenes.rs"]
 mod scenes;
 
+use host_tests::firmware::{instrument, Demo};
 use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
 use pbuffer::render::{storage_rows, BakedMesh, CompactEdge, FacePlane};
 use pbuffer::{packed_len, DrawMode, PackedFramebuffer, Pattern};
@@ -228,6 +230,13 @@ fn firmware_example_frames() {
                 scenes::PanelBuffers,
                 [("panel-scanline", DrawMode::Dashed)]
             );
+            // The instrument-panel demo: the bracket in its pane beside the text.
+            let mut demo = Demo::new();
+            for n in 0..instrument::FRAMES {
+                let fb = demo.frame(n);
+                let lit = print("instrument", n, fb.as_bytes());
+                assert!(lit > 300, "instrument {n}: {lit} pixels");
+            }
         })
         .expect("spawn")
         .join()

@@ -1,9 +1,11 @@
 //! Firmware examples of pbuffer for a Cortex-M4 (QEMU `mps2-an386`): the scenes
 //! (`scenes`), the two on-chip baselines (`painter`, `plain`), the suzanne model
 //! converted and baked at build time (`suzanne`), the panel's constants baked at build
-//! time (`panel_baked`), and the measuring harness (`fw`).
+//! time (`panel_baked`), the instrument-panel demo (`instrument`: the turning bracket
+//! beside embedded-graphics text), and the measuring harness (`fw`).
 #![no_std]
 
+pub mod instrument;
 pub mod painter;
 pub mod plain;
 pub mod scenes;

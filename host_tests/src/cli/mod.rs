@@ -27,6 +27,8 @@ pub use look::Look;
 pub use options::Options;
 pub use parse::{parse_args, parse_flags};
 pub use report::ReportFlags;
+/// `--look NAME` parsed (lcd-white, lcd-green, lcd-blue, oled-white, oled-blue, paper).
+pub use values::look as parse_look;
 
 /// The `--help` text of the flags `T`: every flag with its values and default.
 pub fn help_text<T: CommandFactory>() -> String {

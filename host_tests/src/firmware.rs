@@ -1,0 +1,156 @@
+//! The firmware examples' scene code on the host: `examples/embedded`'s `scenes` and
+//! `instrument` modules, included by path, so the host draws the firmware's frames with
+//! the very same code; and [`Demo`], the instrument-panel demo ready to draw (the
+//! bracket's fast-engine constants made here as build.rs makes them), for the frame-hash
+//! test, the `instrument` PNG writer and the `instrument-window` simulator window.
+
+use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
+use pbuffer::render::{BakedMesh, CompactEdge, FacePlane};
+
+use crate::cli::Look;
+
+// The firmware's own file: its buffers have a `const fn new` (for `static`s), no `Default`.
+#[allow(dead_code, missing_docs, clippy::new_without_default)]
+#[path = "../../examples/embedded/src/scenes.rs"]
+pub mod scenes;
+
+#[path = "../../examples/embedded/src/instrument.rs"]
+pub mod instrument;
+
+use instrument::Frame;
+use scenes::{panel, PanelFastBuffers, PanelFastEngine};
+
+/// The bracket's mesh, as the firmware has it (`scenes::panel`'s arrays).
+fn panel_mesh() -> Mesh<'static> {
+    Mesh::new(&panel::VERTICES, &panel::INDICES, &panel::OFFSETS).expect("the panel mesh")
+}
+
+/// The bracket's fast-engine constants and planarity bits, made at run time as
+/// `examples/embedded/build.rs` makes them (crease angle 30 degrees).
+#[derive(Debug, Clone)]
+pub struct PanelBake {
+    planar: Vec<u32>,
+    planes: Vec<FacePlane>,
+    edges: Vec<CompactEdge>,
+}
+
+impl PanelBake {
+    /// Bakes the bracket.
+    pub fn new() -> Self {
+        let mesh = panel_mesh();
+        let mut weld = vec![0u32; mesh.vertices().len()];
+        let mut scratch = vec![HalfEdgeRecord::EMPTY; mesh.indices().len()];
+        let mut store = vec![MeshEdge::EMPTY; mesh.indices().len()];
+        let adjacency = EdgeAdjacency::build(&mesh, 30.0, &mut weld, &mut scratch, &mut store)
+            .expect("the panel's adjacency");
+        let mut planar = vec![0u32; pbuffer::mesh::planar_words(mesh.face_count())];
+        pbuffer::order::planar_faces(&mesh, &mut planar).expect("sized");
+        let mut planes = vec![FacePlane::default(); mesh.face_count()];
+        let mut edges = vec![CompactEdge::EMPTY; adjacency.edges().len()];
+        BakedMesh::bake(&mesh, &adjacency, &mut planes, &mut edges).expect("bakes");
+        Self {
+            planar,
+            planes,
+            edges,
+        }
+    }
+
+    /// The baked mesh, checked by `BakedMesh::new` as the firmware checks it at boot.
+    pub fn baked(&self) -> BakedMesh<'_> {
+        let mesh = panel_mesh()
+            .with_planar_faces(&self.planar)
+            .expect("planar bits");
+        BakedMesh::new(mesh, &self.planes, &self.edges).expect("the baked panel")
+    }
+}
+
+impl Default for PanelBake {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// The instrument-panel demo with its engine and lent buffers (the firmware's sizes).
+#[derive(Debug)]
+pub struct Demo {
+    bake: PanelBake,
+    engine: Box<PanelFastEngine>,
+    buffers: Box<PanelFastBuffers>,
+}
+
+impl Demo {
+    /// A demo ready to draw.
+    pub fn new() -> Self {
+        Self {
+            bake: PanelBake::new(),
+            engine: Box::new(PanelFastEngine::new()),
+            buffers: Box::new(PanelFastBuffers::new()),
+        }
+    }
+
+    /// Frame `n` (`instrument::draw`, as the firmware draws it).
+    pub fn frame(&mut self, n: u32) -> Box<Frame> {
+        let mut fb = Box::new(Frame::new());
+        instrument::draw(
+            &mut self.engine,
+            &self.bake.baked(),
+            &mut self.buffers,
+            n,
+            &mut fb,
+        )
+        .expect("the demo frame draws");
+        fb
+    }
+}
+
+impl Default for Demo {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// The colour between frames in [`frames_rgb`].
+const BEZEL: [u8; 3] = [64, 64, 64];
+
+/// Frames side by side as RGB (row-major, 3 bytes a pixel) in `look`, each pixel a
+/// `scale x scale` block, `gap` pixels of a dark grey bezel between frames (before
+/// scaling). As `render` draws its PNG: from scale 3 up (not for `paper`) the last row
+/// and column of each block are a shade towards the glass, a faint pixel grid; at
+/// scale 1 and 2 the picture is pixel for pixel the simulator window's (no spacing).
+/// Returns the RGB bytes, width and height.
+pub fn frames_rgb(
+    frames: &[&Frame],
+    look: Look,
+    scale: usize,
+    gap: usize,
+) -> (Vec<u8>, usize, usize) {
+    let (fw, fh) = (instrument::WIDTH, instrument::HEIGHT);
+    let w = (frames.len() * fw + frames.len().saturating_sub(1) * gap) * scale;
+    let h = fh * scale;
+    let (off, on) = look.colours();
+    let mix = |a: [u8; 3], b: [u8; 3], t: f32| -> [u8; 3] {
+        std::array::from_fn(|k| (f32::from(a[k]) * (1.0 - t) + f32::from(b[k]) * t).round() as u8)
+    };
+    let grid = scale >= 3 && look != Look::Paper;
+    let (on_edge, off_edge) = (mix(on, off, 0.3), mix(off, [0, 0, 0], 0.06));
+    let mut rgb = Vec::with_capacity(w * h * 3);
+    for y in 0..h {
+        for x in 0..w {
+            let (col, sx, sy) = (x / scale, x % scale, y % scale);
+            let (k, fx) = (col / (fw + gap), col % (fw + gap));
+            let lit = fx < fw && frames[k].pixel(fx as u32, (y / scale) as u32);
+            let edge = grid && fx < fw && (sx == scale - 1 || sy == scale - 1);
+            if fx >= fw {
+                rgb.extend_from_slice(&BEZEL);
+                continue;
+            }
+            rgb.extend_from_slice(&match (lit, edge) {
+                (true, false) => on,
+                (true, true) => on_edge,
+                (false, false) => off,
+                (false, true) => off_edge,
+            });
+        }
+    }
+    (rgb, w, h)
+}
