@@ -6,9 +6,9 @@ use fixed::types::extra::LeEqU32;
 use std::cell::Cell;
 
 use pbuffer::render::{
-    BakedMesh, CompactEdge, FacePlane, FastRenderer, FastVertex, FastWorkspace, NO_HOLE,
+    BakedMesh, CompactEdge, DashPhase, FacePlane, FastRenderer, FastVertex, FastWorkspace, NO_HOLE,
 };
-use pbuffer::MonoPalette;
+use pbuffer::{Dashes, MonoPalette};
 
 use crate::frame::{CameraSpec, Frame, MeshData, RenderSpec};
 use crate::setup::{Measured, Scene, SceneStorage};
@@ -61,6 +61,7 @@ pub struct FastBuffers {
     pub pool: Vec<FastVertex>,
     pub ids: Vec<u16>,
     pub slopes: Vec<u16>,
+    pub phases: Vec<DashPhase>,
 }
 
 impl FastBuffers {
@@ -85,6 +86,9 @@ impl FastBuffers {
             pool: vec![FastVertex::default(); pool],
             ids: vec![0; w],
             slopes: vec![0; faces],
+            // Room for the dash phases of `LINES` lines (engines with fewer use
+            // a part).
+            phases: vec![DashPhase::SCREEN; LINES],
         }
     }
 
@@ -100,6 +104,7 @@ impl FastBuffers {
             pool: &mut self.pool,
             ids: &mut self.ids,
             slopes: &mut self.slopes,
+            phases: &mut self.phases,
         }
     }
 }
@@ -145,9 +150,16 @@ pub(crate) fn render_fast<Frac: LeEqU32>(
         )
     })?;
     // Working RAM: the lent buffers (the pool and ids at what this frame needs:
-    // none clipped here is 0) and the active lists at this frame's peaks.
+    // none clipped here is 0; the gap mask and the dash phases only with dashes
+    // along the edges) and the active lists at this frame's peaks.
     let stats = measured.stats;
-    let lent = ws.bytes() - std::mem::size_of_val(ws.pool) - std::mem::size_of_val(ws.ids);
+    let along = matches!(scene.settings.dashes, Dashes::Along { .. });
+    let unused = if along {
+        0
+    } else {
+        std::mem::size_of_val(ws.phases) + 4 * w.div_ceil(32)
+    };
+    let lent = ws.bytes() - std::mem::size_of_val(ws.pool) - std::mem::size_of_val(ws.ids) - unused;
     let working = lent
         + FastRenderer::<Frac, FACETS, LINES>::bytes_for(
             stats.peak_faces as usize,

@@ -37,8 +37,9 @@ pub use abuffer::{GreyPalette, GreyShades, SmallFace};
 pub use codefill::{CodeFillRenderer, CodeWorkspace, DepthOrder, RowCodes, Visibility};
 pub use compose::{FrameProbe, MonoPalette, Palette, SolidPalette};
 pub use fast::{
-    BakedMesh, BakedSource, CompactEdge, FacePlane, FastRenderer, FastVertex, FastWorkspace,
-    FAST_MAX_SUBPIXEL_BITS, MAX_CHECKED_FACES, MAX_CORNERS, MAX_FAST_FACES, MAX_HOLES, NO_HOLE,
+    BakedMesh, BakedSource, CompactEdge, DashPhase, FacePlane, FastRenderer, FastVertex,
+    FastWorkspace, FAST_MAX_SUBPIXEL_BITS, MAX_CHECKED_FACES, MAX_CORNERS, MAX_FAST_FACES,
+    MAX_HOLES, NO_HOLE,
 };
 pub use idpass::IdWorkspace;
 pub use painter::{PaintOrder, PainterRenderer};

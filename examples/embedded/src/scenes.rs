@@ -271,6 +271,7 @@ impl<
             pool: &mut self.pool,
             ids: &mut [],
             slopes: &mut self.slopes,
+            phases: &mut [],
         }
     }
 }

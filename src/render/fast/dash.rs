@@ -56,16 +56,19 @@ impl Dashing {
 /// The `on` of dashes without a gap (solid hidden lines).
 const SOLID: u32 = u32::MAX;
 
-/// A line's dash phase, in turns: `at0 + k step` at centre `k` (wrapping).
-/// `step == 0`: no dashes along the line (the screen pattern).
+/// A feature line's dash phase along its edge ([`Dashes::Along`]), in turns of
+/// the dash pattern: `at0 + k step` at pixel centre `k` (wrapping). The fast
+/// engine keeps one for each active line in [`FastWorkspace::phases`](super::FastWorkspace::phases).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub(super) struct Phase {
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct DashPhase {
     at0: u32,
     step: u32,
 }
 
-impl Phase {
-    /// No dashes along the line.
+impl DashPhase {
+    /// No dashes along the line (`step == 0`); also the value to fill a lent
+    /// buffer with.
     pub const SCREEN: Self = Self { at0: 0, step: 0 };
 
     /// The phase of a line whose centre `k` lies at major coordinate `k + 1/2`
@@ -74,7 +77,7 @@ impl Phase {
     /// when `grows`. `k1` is a centre near the line (its first), where the phase
     /// is set up in `f32` (the distance there is small when the anchor is on
     /// screen).
-    pub fn new(dashing: Dashing, anchor: f32, grows: bool, ratio: f32, k1: i32) -> Self {
+    pub(super) fn new(dashing: Dashing, anchor: f32, grows: bool, ratio: f32, k1: i32) -> Self {
         if dashing.on == SOLID {
             return Self::SCREEN;
         }
@@ -92,7 +95,7 @@ impl Phase {
     /// Is the hidden pixel at centre `k` in a gap of the dashes (never with the
     /// screen pattern)?
     #[inline(always)]
-    pub fn in_gap(self, k: i32, on: u32) -> bool {
+    pub(super) fn in_gap(self, k: i32, on: u32) -> bool {
         self.step != 0 && self.at0.wrapping_add((k as u32).wrapping_mul(self.step)) >= on
     }
 }
@@ -159,7 +162,7 @@ mod tests {
     }
 
     /// The on/off sequence of centres `ks` of a line.
-    fn dashes(phase: Phase, ks: impl Iterator<Item = i32>) -> Vec<bool> {
+    fn dashes(phase: DashPhase, ks: impl Iterator<Item = i32>) -> Vec<bool> {
         let on = iso().on;
         ks.map(|k| !phase.in_gap(k, on)).collect()
     }
@@ -168,7 +171,7 @@ mod tests {
     fn a_horizontal_line_from_its_anchor_is_twelve_on_three_off() {
         // Anchor at x = 10.25 px, growing to the right: centre 10 is a quarter
         // pixel from it, centre 22 the first in a gap (12.25 px).
-        let phase = Phase::new(iso(), 10.25, true, 1.0, 10);
+        let phase = DashPhase::new(iso(), 10.25, true, 1.0, 10);
         let got = dashes(phase, 10..55);
         let want: Vec<bool> = (0..45).map(|i| i % 15 < 12).collect();
         assert_eq!(got, want);
@@ -178,7 +181,7 @@ mod tests {
     fn the_phase_is_anchored_whichever_way_the_line_is_walked() {
         // The anchor at the high end (x = 60.75): centre 60 is a quarter pixel
         // from it, 48 the first in a gap (12.25 px).
-        let phase = Phase::new(iso(), 60.75, false, 1.0, 20);
+        let phase = DashPhase::new(iso(), 60.75, false, 1.0, 20);
         let got = dashes(phase, (16..=60).rev());
         let want: Vec<bool> = (0..45).map(|i| i % 15 < 12).collect();
         assert_eq!(got, want);
@@ -189,7 +192,7 @@ mod tests {
         // 45 degrees: a centre is sqrt 2 px along the line, so a period of 15 px
         // takes 15 / sqrt 2 = 10.6 centres; dashes of 12 px take 8.5.
         let ratio = core::f32::consts::SQRT_2;
-        let phase = Phase::new(iso(), 0.25, true, ratio, 0);
+        let phase = DashPhase::new(iso(), 0.25, true, ratio, 0);
         let got = dashes(phase, 0..64);
         for (k, on) in got.iter().enumerate() {
             let d = (k as f32 + 0.25) * ratio % 15.0;
@@ -201,8 +204,8 @@ mod tests {
     fn set_up_far_from_the_anchor_keeps_the_phase() {
         // The same line set up at centre 300 (as a line clipped at the screen's
         // edge is) has the same phase at every centre as one set up at 0.
-        let near = Phase::new(iso(), -200.25, true, 1.25, -200);
-        let far = Phase::new(iso(), -200.25, true, 1.25, 300);
+        let near = DashPhase::new(iso(), -200.25, true, 1.25, -200);
+        let far = DashPhase::new(iso(), -200.25, true, 1.25, 300);
         let on = iso().on;
         for k in 300..400 {
             let a = near.at0.wrapping_add((k as u32).wrapping_mul(near.step));
@@ -219,14 +222,14 @@ mod tests {
     #[test]
     fn the_screen_pattern_and_dashes_without_a_gap_have_no_gaps() {
         for k in -5..5 {
-            assert!(!Phase::SCREEN.in_gap(k, 0));
+            assert!(!DashPhase::SCREEN.in_gap(k, 0));
         }
         let solid = Settings {
             dashes: Dashes::Along { dash: 5, gap: 0 },
             ..Settings::default()
         };
         let solid = Dashing::of(&solid).unwrap();
-        let phase = Phase::new(solid, 0.0, true, 1.0, 0);
+        let phase = DashPhase::new(solid, 0.0, true, 1.0, 0);
         assert!((0..40).all(|k| !phase.in_gap(k, solid.on)));
         assert_eq!(Dashing::of(&Settings::default()), None);
         // No dash at all: every hidden pixel is in a gap.
@@ -235,7 +238,7 @@ mod tests {
             ..Settings::default()
         })
         .unwrap();
-        let phase = Phase::new(none, 0.0, true, 1.0, 0);
+        let phase = DashPhase::new(none, 0.0, true, 1.0, 0);
         assert!((0..20).all(|k| phase.in_gap(k, none.on)));
     }
 }

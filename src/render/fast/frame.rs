@@ -79,7 +79,6 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         };
         self.facets.clear();
         self.lines.clear();
-        self.phases.clear();
         let FastWorkspace {
             vertices,
             face_links,
@@ -90,6 +89,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             pool,
             ids,
             slopes,
+            phases,
             ..
         } = ws;
         let (face_heads, line_heads) = heads.split_at(height);
@@ -140,7 +140,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             if settings.mode.draws_lines() {
                 let mut e = line_heads.get(y).copied().unwrap_or(NONE);
                 while e != NONE {
-                    self.activate_line::<ALONG>(baked, &map, vertices, e, &mut stats)
+                    self.activate_line::<ALONG>(baked, &map, vertices, phases, e, &mut stats)
                         .map_err(Error::widen)?;
                     e = line_links.get(usize::from(e)).copied().unwrap_or(NONE);
                 }
@@ -173,7 +173,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                     let gaps = GapMask {
                         words: gaps,
                         on,
-                        phases: &mut self.phases,
+                        phases,
                         line: 0,
                     };
                     line_row(
@@ -253,6 +253,9 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         )?;
         if probe {
             need(w, ws.ids.len())?;
+        }
+        if self.dashing.is_some() {
+            need(LINES, ws.phases.len())?;
         }
         Ok(())
     }
@@ -545,6 +548,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         baked: &BakedMesh<'_>,
         map: &ScreenMap,
         vertices: &[FastVertex],
+        phases: &mut [DashPhase],
         e: u16,
         stats: &mut Stats,
     ) -> Result<(), Error> {
@@ -580,7 +584,10 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                 };
                 self.lines.push(line).map_err(|_| full)?;
                 if ALONG {
-                    self.phases.push(phase).map_err(|_| full)?;
+                    // Room: checked at the frame's start (`LINES` phases).
+                    if let Some(slot) = phases.get_mut(self.lines.len() - 1) {
+                        *slot = phase;
+                    }
                 }
                 stats.peak_edges = stats.peak_edges.max(self.lines.len() as u32);
             }

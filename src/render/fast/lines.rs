@@ -15,7 +15,7 @@
 
 use heapless::Vec;
 
-use super::dash::{Dashing, Phase};
+use super::dash::{DashPhase, Dashing};
 use super::step::Stepper;
 use super::view::FastVertex;
 use crate::camera::sqrt;
@@ -80,7 +80,7 @@ impl ActiveLine {
     /// `ends` are the edge's vertices' cache positions (which the faces around its
     /// ends share). `along`: the frame's dashes along the edges, and the anchor
     /// (`2^-S` px), the unclipped position of the edge's end on `a`'s side;
-    /// the line's dash phase comes with it ([`Phase::SCREEN`] without `along`).
+    /// the line's dash phase comes with it ([`DashPhase::SCREEN`] without `along`).
     pub fn new(
         a: FastVertex,
         b: FastVertex,
@@ -88,7 +88,7 @@ impl ActiveLine {
         ends: [(i16, i16); 2],
         s: u32,
         along: Option<(Dashing, (f32, f32))>,
-    ) -> Option<(Self, Phase)> {
+    ) -> Option<(Self, DashPhase)> {
         let (h, p) = (1i32 << s, 2i32 << s);
         let ((ax, ay), (bx, by)) = (a.half(), b.half());
         let (dx, dy) = (bx - ax, by - ay);
@@ -131,9 +131,9 @@ impl ActiveLine {
                 let (fu, fv) = (du as f32, dv as f32);
                 let ratio = sqrt(fu * fu + fv * fv) / fu;
                 // `a` is the end at the smaller major coordinate when `forward`.
-                Phase::new(dashing, anchor, forward, ratio, k_first)
+                DashPhase::new(dashing, anchor, forward, ratio, k_first)
             }
-            None => Phase::SCREEN,
+            None => DashPhase::SCREEN,
         };
         let line = Self {
             own: faces.map(|f| 0xFFFF - f),
@@ -383,8 +383,8 @@ fn edge_offset(q: i32, s: u32) -> i32 {
 pub(super) trait Gaps {
     /// The line at `i` of the active lines is drawn next.
     fn line(&mut self, i: usize);
-    /// The line at `i` ended (it is swapped with the last, as the lines are).
-    fn remove(&mut self, i: usize);
+    /// The line at `i` ended: the last, at `last`, takes its place.
+    fn remove(&mut self, i: usize, last: usize);
     /// Marks the current line's hidden pixel at centre `k` (column `x`) when it
     /// is in a gap.
     fn mark(&mut self, k: i32, x: usize);
@@ -397,7 +397,7 @@ impl Gaps for NoGaps {
     #[inline(always)]
     fn line(&mut self, _: usize) {}
     #[inline(always)]
-    fn remove(&mut self, _: usize) {}
+    fn remove(&mut self, _: usize, _: usize) {}
     #[inline(always)]
     fn mark(&mut self, _: i32, _: usize) {}
 }
@@ -405,22 +405,24 @@ impl Gaps for NoGaps {
 /// Dashes along the edges: the row's gap mask, the frame's [`Dashing::on`], the
 /// active lines' phases (in the lines' order) and the current line's index
 /// (its phase is read only for its hidden pixels).
-pub(super) struct GapMask<'a, const LINES: usize> {
+pub(super) struct GapMask<'a> {
     pub words: &'a mut [u32],
     pub on: u32,
-    pub phases: &'a mut Vec<Phase, LINES>,
+    pub phases: &'a mut [DashPhase],
     pub line: usize,
 }
 
-impl<const LINES: usize> Gaps for GapMask<'_, LINES> {
+impl Gaps for GapMask<'_> {
     #[inline(always)]
     fn line(&mut self, i: usize) {
         self.line = i;
     }
     #[inline(always)]
-    fn remove(&mut self, i: usize) {
-        if i < self.phases.len() {
-            self.phases.swap_remove(i);
+    fn remove(&mut self, i: usize, last: usize) {
+        if let Some(&p) = self.phases.get(last) {
+            if let Some(slot) = self.phases.get_mut(i) {
+                *slot = p;
+            }
         }
     }
     #[inline(always)]
@@ -456,7 +458,7 @@ pub(super) fn line_row<const LINES: usize>(
         if line.row(y, s, test, row, faces, beside, visible, hidden, &mut gaps) {
             i += 1;
         } else {
-            gaps.remove(i);
+            gaps.remove(i, lines.len() - 1);
             // Panics only for i >= len, and `get_mut(i)` just found it:
             // unreachable. (A form without the panic path cost the
             // suzanne frame 1 %, measured.)

@@ -82,7 +82,8 @@ use crate::mesh::{bit, set_bit, EdgeKind, Viewpoint};
 use crate::{Error, SpanSink, Viewport};
 use active::ActiveFacets;
 use clip::{clip_polygon, clip_segment};
-use dash::{Dashing, Phase};
+pub use dash::DashPhase;
+use dash::Dashing;
 use depth_row::clear_row;
 use facets::{facet, ClipPolygon, CornerSource, Corners, Facet};
 use holes::HoleBoxes;
@@ -101,9 +102,11 @@ const NONE: u16 = 0xFFFF;
 /// Storage the caller lends for one frame of the fast engine. Sizes: `vertices` >=
 /// the mesh's vertices; `facing` >= faces / 32 words; `face_links` >= faces;
 /// `line_links` >= edges; `heads` >= 2 x height; `row` >= width; `masks` >= 2 x
-/// ceil(width / 32) (3 x with [`Dashes::Along`](super::Dashes::Along)); `pool` holds the corners of the frame's clipped faces (0 when
-/// nothing is clipped; at most 65,535 are used); `slopes` >= faces; `ids` >= width
-/// when a [`FrameProbe`] looks at the rows, else it may be empty.
+/// ceil(width / 32) (3 x with [`Dashes::Along`](super::Dashes::Along)); `pool`
+/// holds the corners of the frame's clipped faces (0 when nothing is clipped; at
+/// most 65,535 are used); `slopes` >= faces; `ids` >= width when a [`FrameProbe`]
+/// looks at the rows, else it may be empty; `phases` >= `LINES` with
+/// [`Dashes::Along`](super::Dashes::Along), else it may be empty.
 /// [`FastWorkspace::bytes`] sums them.
 #[derive(Debug)]
 pub struct FastWorkspace<'s> {
@@ -128,6 +131,9 @@ pub struct FastWorkspace<'s> {
     pub ids: &'s mut [u16],
     /// Each face's steepest depth slope this frame (for the line test's margin).
     pub slopes: &'s mut [u16],
+    /// The active lines' dash phases, one for each of the engine's `LINES`, with
+    /// [`Dashes::Along`](super::Dashes::Along); else it may be empty.
+    pub phases: &'s mut [DashPhase],
 }
 
 impl FastWorkspace<'_> {
@@ -144,6 +150,7 @@ impl FastWorkspace<'_> {
             + size_of_val(self.pool)
             + size_of_val(self.ids)
             + size_of_val(self.slopes)
+            + size_of_val(self.phases)
     }
 }
 
@@ -154,9 +161,6 @@ impl FastWorkspace<'_> {
 pub struct FastRenderer<Frac: LeEqU32, const FACETS: usize, const LINES: usize> {
     facets: ActiveFacets<FACETS>,
     lines: Vec<ActiveLine, LINES>,
-    /// The active lines' dash phases, in their order (only with dashes along
-    /// the edges).
-    phases: Vec<Phase, LINES>,
     /// The frame's dashes along the edges (`None`: the screen pattern).
     dashing: Option<Dashing>,
     _frac: PhantomData<Frac>,
@@ -220,7 +224,6 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         Self {
             facets: ActiveFacets::new(),
             lines: Vec::new(),
-            phases: Vec::new(),
             dashing: None,
             _frac: PhantomData,
         }

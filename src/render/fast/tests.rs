@@ -72,6 +72,7 @@ impl Buffers {
             pool: &mut [],
             ids: &mut [],
             slopes: &mut self.slopes,
+            phases: &mut [],
         }
     }
 }
