@@ -1,10 +1,12 @@
 //! Firmware examples of pbuffer for a Cortex-M4 (QEMU `mps2-an386`): the scenes
 //! (`scenes`), the two on-chip baselines (`painter`, `plain`), the suzanne model
 //! converted and baked at build time (`suzanne`), the panel's constants baked at build
-//! time (`panel_baked`), and the measuring harness (`fw`).
+//! time (`panel_baked`), the frames on panel driver crates (`panels`), and the measuring
+//! harness (`fw`).
 #![no_std]
 
 pub mod painter;
+pub mod panels;
 pub mod plain;
 pub mod scenes;
 

@@ -303,9 +303,10 @@ pub type PanelFastBuffers = FastBuffers<
 >;
 
 /// Draws one frame of `baked` seen from `view` into `sink` with the fast engine:
-/// `mode` with culling on for closed meshes and the paper's pattern.
+/// `mode` with culling on for closed meshes and the paper's pattern. The sink may be
+/// a panel driver's draw target that can fail (the `panels` examples).
 pub fn render_fast<
-    K: SpanSink<Color = embedded_graphics::pixelcolor::BinaryColor, Error = Infallible>,
+    K: SpanSink<Color = embedded_graphics::pixelcolor::BinaryColor>,
     const FACETS: usize,
     const LINES: usize,
 >(
@@ -315,8 +316,8 @@ pub fn render_fast<
     mode: DrawMode,
     ws: &mut FastWorkspace<'_>,
     sink: &mut K,
-) -> Result<Stats, Error> {
-    let camera = view.camera()?;
+) -> Result<Stats, Error<K::Error>> {
+    let camera = view.camera().map_err(Error::widen)?;
     engine.render(
         baked,
         &camera,
