@@ -214,19 +214,19 @@ fn expect_sharp(fb: &SharpFb, vcom: bool, msb_first: bool) -> Vec<SpiT> {
 }
 
 /// The panel's reference frames: pbuffer's `PackedFramebuffer`, as the `panel` example.
-fn panel_frames(baked: &BakedMesh<'_>) -> Vec<Box<PanelFb>> {
+fn panel_frames(baked: &BakedMesh<'_>) -> Vec<PanelFb> {
     let mut engine = Box::new(scenes::PanelFastEngine::new());
     let mut b = Box::new(scenes::PanelFastBuffers::new());
     (0..panel::FRAMES)
         .map(|n| {
-            let mut fb = Box::new(PanelFb::new());
+            let mut fb = PanelFb::new();
             scenes::render_fast(
                 &mut engine,
                 baked,
                 &panel::view(n),
                 DrawMode::Dashed,
                 &mut b.workspace(),
-                &mut *fb,
+                &mut fb,
             )
             .expect("renders");
             fb
@@ -235,19 +235,19 @@ fn panel_frames(baked: &BakedMesh<'_>) -> Vec<Box<PanelFb>> {
 }
 
 /// Suzanne's reference frames, as the `suzanne` example.
-fn suzanne_frames(baked: &BakedMesh<'_>) -> Vec<Box<SharpFb>> {
+fn suzanne_frames(baked: &BakedMesh<'_>) -> Vec<SharpFb> {
     let mut engine = Box::new(scenes::FastEngine::new());
     let mut b = Box::new(scenes::SuzanneFastBuffers::new());
     (0..suzanne::FRAMES)
         .map(|n| {
-            let mut fb = Box::new(SharpFb::new());
+            let mut fb = SharpFb::new();
             scenes::render_fast(
                 &mut engine,
                 baked,
                 &suzanne::view(n),
                 DrawMode::Dashed,
                 &mut b.workspace(),
-                &mut *fb,
+                &mut fb,
             )
             .expect("renders");
             fb
@@ -469,7 +469,7 @@ fn a_changed_pixel_or_a_wrong_bit_order_is_caught() {
         panel_baked(|baked| {
             let refs = panel_frames(baked);
             let mut changed = refs[0].clone();
-            flip(&mut *changed, refs[0].pixel(37, 21), 37, 21);
+            flip(&mut changed, refs[0].pixel(37, 21), 37, 21);
             let (mut bytes, mut ends) = (vec![0u8; 2048], vec![0u32; 128]);
             let record = RefCell::new(Record::new(&mut bytes, &mut ends));
             let mut display = panels::ssd1306_display(Tap(&record));
@@ -506,7 +506,7 @@ fn a_changed_pixel_or_a_wrong_bit_order_is_caught() {
             let wrong_order = decode_sharp(rec.bytes(), false);
             assert!(!differences(&wrong_order, 400, |x, y| refs[0].pixel(x, y)).is_empty());
             let mut changed = refs[0].clone();
-            flip(&mut *changed, refs[0].pixel(201, 117), 201, 117);
+            flip(&mut changed, refs[0].pixel(201, 117), 201, 117);
             let decoded = decode_sharp(rec.bytes(), true);
             assert_eq!(
                 differences(&decoded, 400, |x, y| changed.pixel(x, y)),

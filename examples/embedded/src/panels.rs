@@ -294,7 +294,7 @@ where
     D: DrawTarget<Color = BinaryColor>,
 {
     let mut sink = FillSolid::new(target).map_err(Error::widen)?;
-    scenes::render_fast(engine, baked, view, DrawMode::Dashed, ws, &mut sink)
+    scenes::render_fast_to(engine, baked, view, DrawMode::Dashed, ws, &mut sink)
 }
 
 /// Way **direct**: draws frame `view` of `baked` (dashed hidden lines, the examples'
@@ -316,7 +316,7 @@ where
         u16::try_from(size.height).map_err(|_| Error::OutOfRange)?,
     );
     let mut sink = Pixels::new(target, width, height);
-    scenes::render_fast(engine, baked, view, DrawMode::Dashed, ws, &mut sink)
+    scenes::render_fast_to(engine, baked, view, DrawMode::Dashed, ws, &mut sink)
 }
 
 /// Way **copy**, its second half: copies the lit pixels of the finished frame `fb`

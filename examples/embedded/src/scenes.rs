@@ -303,9 +303,34 @@ pub type PanelFastBuffers = FastBuffers<
 >;
 
 /// Draws one frame of `baked` seen from `view` into `sink` with the fast engine:
-/// `mode` with culling on for closed meshes and the paper's pattern. The sink may be
-/// a panel driver's draw target that can fail (the `panels` examples).
+/// `mode` with culling on for closed meshes and the paper's pattern.
 pub fn render_fast<
+    K: SpanSink<Color = embedded_graphics::pixelcolor::BinaryColor, Error = Infallible>,
+    const FACETS: usize,
+    const LINES: usize,
+>(
+    engine: &mut FastRenderer<U4, FACETS, LINES>,
+    baked: &BakedMesh<'_>,
+    view: &View,
+    mode: DrawMode,
+    ws: &mut FastWorkspace<'_>,
+    sink: &mut K,
+) -> Result<Stats, Error> {
+    let camera = view.camera()?;
+    engine.render(
+        baked,
+        &camera,
+        &settings(mode),
+        ws,
+        &MonoPalette::default(),
+        sink,
+        &mut (),
+    )
+}
+
+/// [`render_fast`] into a sink that can fail: a panel driver's draw target (the
+/// `panels` examples).
+pub fn render_fast_to<
     K: SpanSink<Color = embedded_graphics::pixelcolor::BinaryColor>,
     const FACETS: usize,
     const LINES: usize,
