@@ -4,14 +4,17 @@
 //! `host_tests/tests/panel_bus.rs` (included there by path), so the host drives the very
 //! same code against `embedded-hal-mock` buses.
 //!
-//! A finished frame reaches the driver's buffer in one of two ways:
+//! A frame reaches the driver's buffer in one of three ways, measured by the examples:
 //!
-//! - **direct**: the renderer's spans go straight into the driver's buffer through its
-//!   `DrawTarget` (`fill_solid` a span, [`render_direct`]);
+//! - **direct, `Pixels`** (the documented way, the fastest on both panels): the
+//!   renderer's spans and row masks go straight into the driver's buffer through its
+//!   `DrawTarget`, as `draw_iter` calls of their lit pixels ([`render_direct`]);
+//! - **direct, `fill_solid`**: the same through pbuffer's `FillSolid` sink, one
+//!   `fill_solid` a span ([`render_fill_solid`]);
 //! - **copy**: the frame is drawn into pbuffer's `PackedFramebuffer` and its lit pixels
 //!   are then copied into the driver's buffer ([`copy_frame`]).
 //!
-//! Either way the driver's `flush` then writes the same bytes to the bus.
+//! Every way, the driver's `flush` then writes the same bytes to the bus.
 
 use core::cell::RefCell;
 use core::convert::Infallible;
