@@ -35,9 +35,9 @@ fn main() {
         println!("cargo:rerun-if-changed={f}");
     }
 
-    if env::var_os("CARGO_FEATURE_DEFMT").is_some() {
-        println!("cargo:rustc-link-arg=-Tdefmt.x");
-    }
+    // defmt's sections (not loaded: nothing in flash or RAM) need defmt.x: the
+    // `defmt` feature's, and sharp-memory-display's, which always depends on defmt.
+    println!("cargo:rustc-link-arg=-Tdefmt.x");
 
     let text = fs::read_to_string("models/suzanne.obj").expect("read models/suzanne.obj");
     let m = obj::parse(&text, "models/suzanne.obj").unwrap_or_else(|e| panic!("{e}"));

@@ -2,11 +2,13 @@
 //! (`scenes`), the two on-chip baselines (`painter`, `plain`), the suzanne model
 //! converted and baked at build time (`suzanne`), the panel's constants baked at build
 //! time (`panel_baked`), the instrument-panel demo (`instrument`: the turning bracket
-//! beside embedded-graphics text), and the measuring harness (`fw`).
+//! beside embedded-graphics text), the frames on panel driver crates (`panels`), and
+//! the measuring harness (`fw`).
 #![no_std]
 
 pub mod instrument;
 pub mod painter;
+pub mod panels;
 pub mod plain;
 pub mod scenes;
 

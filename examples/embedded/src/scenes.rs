@@ -329,6 +329,32 @@ pub fn render_fast<
     )
 }
 
+/// [`render_fast`] into a sink that can fail: a panel driver's draw target (the
+/// `panels` examples).
+pub fn render_fast_to<
+    K: SpanSink<Color = embedded_graphics::pixelcolor::BinaryColor>,
+    const FACETS: usize,
+    const LINES: usize,
+>(
+    engine: &mut FastRenderer<U4, FACETS, LINES>,
+    baked: &BakedMesh<'_>,
+    view: &View,
+    mode: DrawMode,
+    ws: &mut FastWorkspace<'_>,
+    sink: &mut K,
+) -> Result<Stats, Error<K::Error>> {
+    let camera = view.camera().map_err(Error::widen)?;
+    engine.render(
+        baked,
+        &camera,
+        &settings(mode),
+        ws,
+        &MonoPalette::default(),
+        sink,
+        &mut (),
+    )
+}
+
 /// The examples' settings: `mode`, culling on for closed meshes, the paper's pattern.
 fn settings(mode: DrawMode) -> Settings {
     Settings {
