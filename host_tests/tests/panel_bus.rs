@@ -14,7 +14,9 @@
 //!   by pixel, for the three ways the firmware measures (fill_solid, `Pixels`, copy);
 //! - `embedded-hal-mock` buses expect, write by write, the bytes encoded from the
 //!   reference frame, and fail on any other byte;
-//! - a one-pixel change and a wrong bit order are shown to be caught.
+//! - a one-pixel change and a wrong bit order are shown to be caught;
+//! - the reference frames are `render --hash` of the same views (the `render`
+//!   command run on the same mesh and camera).
 //!
 //! Prints `frame EXAMPLE N hash=HEX` (FNV-1a 64 of the bus bytes of each frame's
 //! flush, as the firmware hashes them), which `scripts/firmware` compares with the
@@ -548,4 +550,71 @@ fn sharp_mock_takes(expected: &SharpFb, msb_first: bool, drawn: &SharpFb) -> boo
         spi.done();
     }))
     .is_ok()
+}
+
+/// The `render` command's `--hash` line for `obj` seen from `v` at `size`.
+fn render_hash(obj: &std::path::Path, size: &str, v: &scenes::View) -> u64 {
+    let xyz = |a: [f32; 3]| format!("{},{},{}", a[0], a[1], a[2]);
+    let (fov, near, far) = (v.fov_deg.to_string(), v.near.to_string(), v.far.to_string());
+    let obj = obj.to_str().expect("a UTF-8 path");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_render"))
+        .args([
+            obj,
+            "--size",
+            size,
+            "--eye",
+            &xyz(v.eye),
+            "--target",
+            &xyz(v.target),
+        ])
+        .args(["--fov", &fov, "--near", &near, "--far", &far, "--hash"])
+        .output()
+        .expect("runs render");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    let hex = text
+        .lines()
+        .find_map(|l| l.strip_prefix("hash: "))
+        .expect("a hash line");
+    u64::from_str_radix(hex.trim(), 16).expect("hex")
+}
+
+/// The frames the bus tests decode against are the `render` command's frames:
+/// every view of both examples has the hash `render --hash` prints for it (the
+/// bracket written out as an OBJ file).
+#[test]
+fn reference_frames_are_render_hash() {
+    let dir = std::env::temp_dir().join(format!("panel_bus_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let mut text = String::new();
+    for v in panel::VERTICES {
+        text += &format!("v {} {} {}\n", v[0], v[1], v[2]);
+    }
+    for w in panel::OFFSETS.windows(2) {
+        let face = &panel::INDICES[w[0] as usize..w[1] as usize];
+        let corners: Vec<String> = face.iter().map(|i| (i + 1).to_string()).collect();
+        text += &format!("f {}\n", corners.join(" "));
+    }
+    let bracket = dir.join("bracket.obj");
+    std::fs::write(&bracket, text).expect("writes the OBJ");
+    let panel_fbs = std::sync::Arc::new(std::sync::Mutex::new(Vec::new()));
+    let suzanne_fbs = std::sync::Arc::new(std::sync::Mutex::new(Vec::new()));
+    let (p, s) = (panel_fbs.clone(), suzanne_fbs.clone());
+    big_stack(move || panel_baked(|b| *p.lock().unwrap() = panel_frames(b)));
+    big_stack(move || suzanne_baked(|b| *s.lock().unwrap() = suzanne_frames(b)));
+    let suzanne_obj = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../examples/embedded/models/suzanne.obj");
+    for (n, fb) in panel_fbs.lock().unwrap().iter().enumerate() {
+        let want = render_hash(&bracket, "128x64", &panel::view(n as u32));
+        assert_eq!(fnv1a64(fb.as_bytes()), want, "panel frame {n}");
+    }
+    for (n, fb) in suzanne_fbs.lock().unwrap().iter().enumerate() {
+        let want = render_hash(&suzanne_obj, "400x240", &suzanne::view(n as u32));
+        assert_eq!(fnv1a64(fb.as_bytes()), want, "suzanne frame {n}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
 }
