@@ -317,16 +317,7 @@ pub fn render_fast<
     ws: &mut FastWorkspace<'_>,
     sink: &mut K,
 ) -> Result<Stats, Error> {
-    let camera = view.camera()?;
-    engine.render(
-        baked,
-        &camera,
-        &settings(mode),
-        ws,
-        &MonoPalette::default(),
-        sink,
-        &mut (),
-    )
+    render_fast_to(engine, baked, view, mode, ws, sink)
 }
 
 /// [`render_fast`] into a sink that can fail: a panel driver's draw target (the

@@ -42,14 +42,17 @@ impl Dashing {
         }
     }
 
-    /// Line masks a row needs: visible and hidden, and the gaps with dashes
-    /// along the edges.
-    pub fn masks(this: Option<Self>) -> usize {
-        if this.is_some() {
-            3
-        } else {
-            2
-        }
+    /// For the screen pattern's copy of the frame loop, which never reads it.
+    pub const NONE: Self = Self { on: 0, period: 1 };
+}
+
+/// Line masks a row needs: visible and hidden, and the gaps with dashes along
+/// the edges.
+pub(super) const fn line_masks(along: bool) -> usize {
+    if along {
+        3
+    } else {
+        2
     }
 }
 

@@ -30,22 +30,29 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         sink: &mut K,
         probe: &mut R,
     ) -> Result<Stats, Error<K::Error>> {
-        self.dashing = Dashing::of(settings);
         // Its own copy of the frame loop for dashes along the edges, so that
         // the screen pattern's has no dash work (measured: one loop for both
         // cost the screen pattern's frames 3 to 6 %).
-        if self.dashing.is_some() {
-            self.frame::<true, K, P, R>(baked, camera, settings, ws, palette, sink, probe)
-        } else {
-            self.frame::<false, K, P, R>(baked, camera, settings, ws, palette, sink, probe)
+        match Dashing::of(settings) {
+            Some(d) => {
+                self.frame::<true, K, P, R>(d, baked, camera, settings, ws, palette, sink, probe)
+            }
+            None => {
+                let none = Dashing::NONE;
+                self.frame::<false, K, P, R>(
+                    none, baked, camera, settings, ws, palette, sink, probe,
+                )
+            }
         }
     }
 
-    /// [`render`](Self::render), with dashes along the edges when `ALONG`.
+    /// [`render`](Self::render), with dashes along the edges `dashing` when
+    /// `ALONG` (else it is not read).
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn frame<const ALONG: bool, K: SpanSink, P: Palette<Color = K::Color>, R: FrameProbe>(
         &mut self,
+        dashing: Dashing,
         baked: &BakedMesh<'_>,
         camera: &Camera,
         settings: &Settings,
@@ -56,7 +63,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
     ) -> Result<Stats, Error<K::Error>> {
         let viewport = sink.viewport();
         let s = Frac::U32;
-        self.check(baked, viewport, ws, R::ACTIVE)
+        self.check(baked, viewport, ws, R::ACTIVE, ALONG)
             .map_err(Error::widen)?;
         let mesh = baked.mesh();
         let (width, height) = (usize::from(viewport.width), usize::from(viewport.height));
@@ -97,9 +104,8 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         clear_row(row);
         let words = width.div_ceil(32);
         let masks = masks
-            .get_mut(..if ALONG { 3 } else { 2 } * words)
+            .get_mut(..line_masks(ALONG) * words)
             .unwrap_or_default();
-        let on = self.dashing.map_or(0, |d| d.on);
         let solid = Settings {
             pattern: Pattern::SOLID,
             ..*settings
@@ -140,8 +146,10 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             if settings.mode.draws_lines() {
                 let mut e = line_heads.get(y).copied().unwrap_or(NONE);
                 while e != NONE {
-                    self.activate_line::<ALONG>(baked, &map, vertices, phases, e, &mut stats)
-                        .map_err(Error::widen)?;
+                    self.activate_line::<ALONG>(
+                        dashing, baked, &map, vertices, phases, e, &mut stats,
+                    )
+                    .map_err(Error::widen)?;
                     e = line_links.get(usize::from(e)).copied().unwrap_or(NONE);
                 }
                 let (visible, hidden) = masks.split_at_mut(words);
@@ -172,7 +180,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                 if ALONG {
                     let gaps = GapMask {
                         words: gaps,
-                        on,
+                        on: dashing.on,
                         phases,
                         line: 0,
                     };
@@ -222,6 +230,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         viewport: Viewport,
         ws: &FastWorkspace<'_>,
         probe: bool,
+        along: bool,
     ) -> Result<(), Error> {
         let s = Frac::U32;
         if s > FAST_MAX_SUBPIXEL_BITS {
@@ -247,14 +256,11 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         need(baked.edges().len(), ws.line_links.len())?;
         need(2 * h, ws.heads.len())?;
         need(w, ws.row.len())?;
-        need(
-            Dashing::masks(self.dashing) * w.div_ceil(32),
-            ws.masks.len(),
-        )?;
+        need(line_masks(along) * w.div_ceil(32), ws.masks.len())?;
         if probe {
             need(w, ws.ids.len())?;
         }
-        if self.dashing.is_some() {
+        if along {
             need(LINES, ws.phases.len())?;
         }
         Ok(())
@@ -543,8 +549,10 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
     }
 
     /// Makes the active line of edge `e` (clipped when an end is outside).
+    #[allow(clippy::too_many_arguments)]
     fn activate_line<const ALONG: bool>(
         &mut self,
+        dashing: Dashing,
         baked: &BakedMesh<'_>,
         map: &ScreenMap,
         vertices: &[FastVertex],
@@ -573,10 +581,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         };
         if let Some((a, b)) = ends {
             let ends = [(ea.x, ea.y), (eb.x, eb.y)];
-            let along = match self.dashing {
-                Some(d) if ALONG => Some((d, dash::anchor(map, baked, edge, ea, a))),
-                _ => None,
-            };
+            let along = ALONG.then(|| (dashing, dash::anchor(map, baked, edge, ea, a)));
             if let Some((line, phase)) = ActiveLine::new(a, b, edge.faces, ends, map.s, along) {
                 let full = Error::CapacityExceeded {
                     needed: LINES + 1,

@@ -83,7 +83,7 @@ use crate::{Error, SpanSink, Viewport};
 use active::ActiveFacets;
 use clip::{clip_polygon, clip_segment};
 pub use dash::DashPhase;
-use dash::Dashing;
+use dash::{line_masks, Dashing};
 use depth_row::clear_row;
 use facets::{facet, ClipPolygon, CornerSource, Corners, Facet};
 use holes::HoleBoxes;
@@ -161,8 +161,6 @@ impl FastWorkspace<'_> {
 pub struct FastRenderer<Frac: LeEqU32, const FACETS: usize, const LINES: usize> {
     facets: ActiveFacets<FACETS>,
     lines: Vec<ActiveLine, LINES>,
-    /// The frame's dashes along the edges (`None`: the screen pattern).
-    dashing: Option<Dashing>,
     _frac: PhantomData<Frac>,
 }
 
@@ -224,7 +222,6 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         Self {
             facets: ActiveFacets::new(),
             lines: Vec::new(),
-            dashing: None,
             _frac: PhantomData,
         }
     }
