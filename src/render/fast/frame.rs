@@ -142,7 +142,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                     .fill_row(&src, yi, s, row)
                     .map_err(Error::widen)?;
             }
-            masks.fill(0);
+            clear_row(masks);
             if settings.mode.draws_lines() {
                 let mut e = line_heads.get(y).copied().unwrap_or(NONE);
                 while e != NONE {
