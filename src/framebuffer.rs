@@ -186,7 +186,15 @@ pub fn write_mask(row: &mut [u8], width: usize, mask: &[u32], on: bool) -> u32 {
             continue;
         }
         words += 1;
-        for (b, m) in chunk.iter_mut().zip(word.reverse_bits().to_be_bytes()) {
+        let bits = word.reverse_bits();
+        if let Ok(four) = <&mut [u8; 4]>::try_from(&mut *chunk) {
+            // A whole word: one load and one store (about a third of the
+            // byte-by-byte instructions on the Cortex-M4).
+            let old = u32::from_be_bytes(*four);
+            *four = if on { old | bits } else { old & !bits }.to_be_bytes();
+            continue;
+        }
+        for (b, m) in chunk.iter_mut().zip(bits.to_be_bytes()) {
             if on {
                 *b |= m;
             } else {
