@@ -158,9 +158,13 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                 let beside = |face: u16, ends: &[(i16, i16); 2], e: (i32, i32)| {
                     let corners = mesh.face(usize::from(face));
                     let corner = |v: &u32| cache.get(*v as usize).copied().unwrap_or_default();
+                    // Positions compared as one word each; an end outside
+                    // touches nothing.
+                    let [a, b] = ends.map(|(x, y)| FastVertex { x, y, d: 0 }.key());
                     let touches = corners.iter().any(|v| {
                         let p = corner(v);
-                        p.inside() && ends.contains(&(p.x, p.y))
+                        let k = p.key();
+                        (k == a || k == b) && p.inside()
                     });
                     if !touches {
                         Beside::Apart

@@ -41,6 +41,12 @@ impl FastVertex {
         self.x != Self::OUTSIDE
     }
 
+    /// `x` and `y` in one word: equal exactly when both are.
+    #[inline(always)]
+    pub(super) fn key(&self) -> u32 {
+        u32::from(self.x as u16) | u32::from(self.y as u16) << 16
+    }
+
     /// `x` and `y` in half sub-pixel units (`2^-(S+1)` px), where pixel centres
     /// are integers.
     pub(super) fn half(&self) -> (i32, i32) {
