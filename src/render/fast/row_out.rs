@@ -91,10 +91,12 @@ pub(super) fn emit_row<K: SpanSink, P: Palette<Color = K::Color>>(
     let dashed = matches!(settings.mode, DrawMode::Dashed | DrawMode::SurfacesDashed);
     let lines = settings.mode != DrawMode::Surfaces;
     // A pattern whose width divides 32 has one word for the whole row.
-    let (w0, w1) = (
-        settings.pattern.word(0, u32::from(y)),
-        settings.pattern.word(32, u32::from(y)),
-    );
+    let w0 = settings.pattern.word(0, u32::from(y));
+    let w1 = if 32 % u32::from(settings.pattern.width().max(1)) == 0 {
+        w0
+    } else {
+        settings.pattern.word(32, u32::from(y))
+    };
     let line_word = |k: usize, v: u32| -> u32 {
         if !lines {
             return 0;
