@@ -264,6 +264,45 @@ mod tests {
         }
     }
 
+    /// A 70-pixel row (two whole words and a tail of 6 pixels in a third):
+    /// the mask's pixels, set and cleared, over a row of other pixels, exactly
+    /// as pixel by pixel; bits past the width touch nothing.
+    #[test]
+    fn a_mask_sets_and_clears_exactly_its_pixels_whole_words_and_tail() {
+        type Wide = PackedFramebuffer<70, 1, { packed_len(70, 1) }>;
+        let mut seed = 0x9E37_79B9u32;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 17;
+            seed ^= seed << 5;
+            seed
+        };
+        for round in 0..200 {
+            let mut fb = Wide::new();
+            let mut want = [false; 70];
+            for (x, w) in want.iter_mut().enumerate() {
+                *w = next() & 1 == 1;
+                fb.write_run(0, x, x + 1, *w);
+            }
+            let mask = [next(), next(), next()];
+            let on = round % 2 == 0;
+            let words = fb.fill_mask(0, &mask, BinaryColor::from(on)).unwrap();
+            let mut had = [false; 3];
+            for (x, w) in want.iter_mut().enumerate() {
+                if mask[x / 32] >> (x % 32) & 1 == 1 {
+                    *w = on;
+                    had[x / 32] = true;
+                }
+            }
+            for (x, &w) in want.iter().enumerate() {
+                assert_eq!(fb.pixel(x as u32, 0), w, "round {round} pixel {x}");
+            }
+            // The padding bits of the row's last byte stay off.
+            assert_eq!(fb.bytes[8] & 0x03, 0, "round {round}");
+            assert_eq!(words, had.iter().filter(|&&h| h).count() as u32);
+        }
+    }
+
     #[test]
     fn byte_layout_is_row_major_msb_first() {
         let mut fb = Fb::new();

@@ -76,7 +76,11 @@ impl<const N: usize> ActiveFacets<N> {
         // Shifted by hand, four words a pass: a few words, where a call to
         // `memmove` costs more.
         let mut carry = key;
-        let mut quads = self.order.get_mut(at..).unwrap_or_default().chunks_exact_mut(4);
+        let mut quads = self
+            .order
+            .get_mut(at..)
+            .unwrap_or_default()
+            .chunks_exact_mut(4);
         for q in &mut quads {
             if let [k0, k1, k2, k3] = q {
                 let next = *k3;
