@@ -155,12 +155,16 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                 let (visible, hidden) = masks.split_at_mut(words);
                 let (hidden, gaps) = hidden.split_at_mut(words.min(hidden.len()));
                 let cache: &[FastVertex] = vertices;
-                let beside = |face: u16, ends: &[(i16, i16); 2], e: (i32, i32)| {
+                let edges = baked.edges();
+                let beside = |face: u16, edge: u16, e: (i32, i32)| {
                     let corners = mesh.face(usize::from(face));
                     let corner = |v: &u32| cache.get(*v as usize).copied().unwrap_or_default();
                     // Positions compared as one word each; an end outside
                     // touches nothing.
-                    let [a, b] = ends.map(|(x, y)| FastVertex { x, y, d: 0 }.key());
+                    let ends = edges
+                        .get(usize::from(edge))
+                        .map_or([NONE; 2], |e| [e.a, e.b]);
+                    let [a, b] = ends.map(|v| corner(&u32::from(v)).key());
                     let touches = corners.iter().any(|v| {
                         let p = corner(v);
                         let k = p.key();
@@ -575,7 +579,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             .get(usize::from(edge.b))
             .copied()
             .unwrap_or_default();
-        let (ea, eb) = (a, b);
+        let ea = a;
         let ends = if a.inside() && b.inside() {
             Some((a, b))
         } else {
@@ -584,9 +588,8 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             clip_segment(map, p(edge.a), p(edge.b))
         };
         if let Some((a, b)) = ends {
-            let ends = [(ea.x, ea.y), (eb.x, eb.y)];
             let along = ALONG.then(|| (dashing, dash::anchor(map, baked, edge, ea, a)));
-            if let Some((line, phase)) = ActiveLine::new(a, b, edge.faces, ends, map.s, along) {
+            if let Some((line, phase)) = ActiveLine::new(a, b, edge.faces, e, map.s, along) {
                 let full = Error::CapacityExceeded {
                     needed: LINES + 1,
                     capacity: LINES,

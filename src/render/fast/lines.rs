@@ -28,8 +28,9 @@ const SLOPE_MARGIN: u32 = 1;
 pub(super) struct ActiveLine {
     /// Row ids (`0xFFFF - face`) of its own faces.
     own: [u16; 2],
-    /// Its ends' snapped screen positions (`x`, `y`), as the vertex cache has them.
-    ends: [(i16, i16); 2],
+    /// Its edge (the baked edge list's index), whose ends the faces around them
+    /// share.
+    edge: u16,
     /// Current and last centre index along the major axis, and the step (+-1).
     k: i16,
     last: i16,
@@ -41,8 +42,14 @@ pub(super) struct ActiveLine {
     d: u32,
     dd: i32,
     bias: u32,
-    /// The last nearer face found apart from the line's ends (`NONE` at first).
-    apart: u16,
+    /// The last face the depth test looked up (`NONE` at first), and what it
+    /// found: the face's depth step along the line's minor axis when it is
+    /// drawn as one plane, else its margin; and whether it is known to be apart
+    /// from the line's ends.
+    near: u16,
+    near_plane: bool,
+    near_apart: bool,
+    near_value: u32,
 }
 
 /// What the line test knows of the face nearest at a pixel.
@@ -77,15 +84,14 @@ pub(super) enum LineTest {
 impl ActiveLine {
     /// The line between `a` and `b` (snapped screen points) with own faces
     /// `faces`; `None` when it has no pixel centre.
-    /// `ends` are the edge's vertices' cache positions (which the faces around its
-    /// ends share). `along`: the frame's dashes along the edges, and the anchor
+    /// `edge` is its index in the baked edge list. `along`: the frame's dashes along the edges, and the anchor
     /// (`2^-S` px), the unclipped position of the edge's end on `a`'s side;
     /// the line's dash phase comes with it ([`DashPhase::SCREEN`] without `along`).
     pub fn new(
         a: FastVertex,
         b: FastVertex,
         faces: [u16; 2],
-        ends: [(i16, i16); 2],
+        edge: u16,
         s: u32,
         along: Option<(Dashing, (f32, f32))>,
     ) -> Option<(Self, DashPhase)> {
@@ -137,7 +143,7 @@ impl ActiveLine {
         };
         let line = Self {
             own: faces.map(|f| 0xFFFF - f),
-            ends,
+            edge,
             k: k as i16,
             last: last as i16,
             dir: dir as i8,
@@ -146,7 +152,10 @@ impl ActiveLine {
             d,
             dd,
             bias: dd.unsigned_abs().saturating_add(1 << 16),
-            apart: super::NONE,
+            near: super::NONE,
+            near_plane: false,
+            near_apart: false,
+            near_value: 0,
         };
         Some((line, phase))
     }
@@ -164,7 +173,7 @@ impl ActiveLine {
         test: LineTest,
         row: &[u32],
         slopes: &impl FaceSlopes,
-        beside: &impl Fn(u16, &[(i16, i16); 2], (i32, i32)) -> Beside,
+        beside: &impl Fn(u16, u16, (i32, i32)) -> Beside,
         visible: &mut [u32],
         hidden: &mut [u32],
         gaps: &mut impl Gaps,
@@ -255,7 +264,7 @@ impl ActiveLine {
         s: u32,
         test: LineTest,
         slopes: &impl FaceSlopes,
-        beside: &impl Fn(u16, &[(i16, i16); 2], (i32, i32)) -> Beside,
+        beside: &impl Fn(u16, u16, (i32, i32)) -> Beside,
         visible: &mut [u32],
         hidden: &mut [u32],
         gaps: &mut impl Gaps,
@@ -293,7 +302,7 @@ impl ActiveLine {
         q: i32,
         s: u32,
         slopes: &impl FaceSlopes,
-        beside: &impl Fn(u16, &[(i16, i16); 2], (i32, i32)) -> Beside,
+        beside: &impl Fn(u16, u16, (i32, i32)) -> Beside,
     ) -> bool {
         let id = cell as u16;
         if id == self.own[0] || id == self.own[1] {
@@ -318,7 +327,8 @@ impl ActiveLine {
         }
         // Most hidden pixels are behind a face that does not touch the line's ends:
         // the last face found so is kept.
-        face == self.apart || self.hides_near_ends(face, k, q, s, beside)
+        // (The depth test just looked the face up: it is `near`.)
+        self.near_apart || self.hides_near_ends(face, k, q, s, beside)
     }
 
     /// Is the face of row entry `cell` nearer than the line (depth `d` at the edge
@@ -327,21 +337,42 @@ impl ActiveLine {
     /// pixel centre along its plane), at the centre by a share of its steepest
     /// slope more for one drawn as several?
     #[inline(always)]
-    fn nearer_at_edge(&self, cell: u32, d: u32, q: i32, s: u32, slopes: &impl FaceSlopes) -> bool {
+    fn nearer_at_edge(
+        &mut self,
+        cell: u32,
+        d: u32,
+        q: i32,
+        s: u32,
+        slopes: &impl FaceSlopes,
+    ) -> bool {
         let face = 0xFFFF - cell as u16;
-        if let Some((a, b)) = slopes.gradient(face) {
+        if face != self.near {
+            // Hidden pixels mostly lie behind the face the last one did: its
+            // look-up is kept.
+            (self.near_plane, self.near_value) = match slopes.gradient(face) {
+                Some((a, b)) => (true, if self.x_major { b } else { a } as u32),
+                None => {
+                    let slope = u32::from(slopes.slope(face));
+                    (
+                        false,
+                        self.bias.saturating_add((SLOPE_MARGIN * slope) << 14),
+                    )
+                }
+            };
+            self.near = face;
+            self.near_apart = false;
+        }
+        if self.near_plane {
             // The middle of the stored unit at the centre, moved along the minor
             // axis to the edge point.
             let off = edge_offset(q, s);
-            let grad = if self.x_major { b } else { a };
+            let grad = self.near_value as i32;
             let at = i64::from(cell & 0xFFFF_0000)
                 + 0x8000
                 + ((i64::from(grad) * i64::from(off)) >> (s + 1));
             at > i64::from(d) + i64::from(self.bias)
         } else {
-            let slope = u32::from(slopes.slope(face));
-            let margin = self.bias.saturating_add((SLOPE_MARGIN * slope) << 14);
-            cell & 0xFFFF_0000 > d.saturating_add(margin)
+            cell & 0xFFFF_0000 > d.saturating_add(self.near_value)
         }
     }
 
@@ -354,13 +385,13 @@ impl ActiveLine {
         k: i32,
         q: i32,
         s: u32,
-        beside: &impl Fn(u16, &[(i16, i16); 2], (i32, i32)) -> Beside,
+        beside: &impl Fn(u16, u16, (i32, i32)) -> Beside,
     ) -> bool {
         let c = (2 * k + 1) << s;
         let e = if self.x_major { (c, q) } else { (q, c) };
-        match beside(face, &self.ends, e) {
+        match beside(face, self.edge, e) {
             Beside::Apart => {
-                self.apart = face;
+                self.near_apart = true;
                 true
             }
             Beside::Covers => true,
@@ -447,7 +478,7 @@ pub(super) fn line_row<const LINES: usize>(
     test: LineTest,
     row: &[u32],
     faces: &impl FaceSlopes,
-    beside: &impl Fn(u16, &[(i16, i16); 2], (i32, i32)) -> Beside,
+    beside: &impl Fn(u16, u16, (i32, i32)) -> Beside,
     visible: &mut [u32],
     hidden: &mut [u32],
     mut gaps: impl Gaps,
