@@ -18,6 +18,21 @@ pub trait Palette {
     /// Colour of pixel (x, y) of face `face`, whose normal makes `shade` (0 edge-on ..
     /// 255 facing the eye) with the view; `None` leaves the pixel untouched.
     fn face(&self, face: u16, shade: u8, x: u16, y: u16) -> Option<Self::Color>;
+    /// The colours [`face`](Self::face) gives the 32 pixels `x0..x0 + 32` of row `y`
+    /// of face `face`, when they are two colours and every pixel is touched: bit `k`
+    /// of the word set takes the first colour, clear the second. `None` (the
+    /// default): the pixels are asked one by one. Lets an engine write a row's
+    /// faces a word at a time.
+    fn face_word(
+        &self,
+        face: u16,
+        shade: u8,
+        x0: u16,
+        y: u16,
+    ) -> Option<(u32, Self::Color, Self::Color)> {
+        let _ = (face, shade, x0, y);
+        None
+    }
 }
 
 /// The monochrome palette: lines in `line`, faces as ordered dither of their
@@ -49,6 +64,26 @@ impl Palette for MonoPalette {
         } else {
             self.line.invert()
         })
+    }
+
+    // Indexing: y % 4 on a 4 x 4 matrix.
+    #[allow(clippy::indexing_slicing)]
+    fn face_word(
+        &self,
+        _face: u16,
+        shade: u8,
+        x0: u16,
+        y: u16,
+    ) -> Option<(u32, BinaryColor, BinaryColor)> {
+        let level = (255 - u16::from(shade)) / 32;
+        let mut nibble = 0u32;
+        for (i, &threshold) in BAYER[usize::from(y % 4)].iter().enumerate() {
+            nibble |= u32::from(u16::from(threshold) < level) << i;
+        }
+        // Bit k is column (x0 + k) % 4 of the matrix: the row turned to start at x0.
+        let r = u32::from(x0 % 4);
+        let nibble = ((nibble >> r) | (nibble << (4 - r))) & 0xF;
+        Some((nibble * 0x1111_1111, self.line, self.line.invert()))
     }
 }
 

@@ -77,7 +77,7 @@ pub(super) fn emit_row<K: SpanSink, P: Palette<Color = K::Color>>(
     settings: &Settings,
     row: &[u32],
     visible: &mut [u32],
-    hidden: &[u32],
+    hidden: &mut [u32],
     palette: &P,
     shades: &mut Shades<'_>,
     sink: &mut K,
@@ -97,12 +97,12 @@ pub(super) fn emit_row<K: SpanSink, P: Palette<Color = K::Color>>(
     } else {
         settings.pattern.word(32, u32::from(y))
     };
-    let line_word = |k: usize, v: u32| -> u32 {
+    // Word `k` of the drawn line pixels, from its visible and hidden words.
+    let line_word = |k: usize, v: u32, h: u32| -> u32 {
         if !lines {
             return 0;
         }
         if dashed {
-            let h = hidden.get(k).copied().unwrap_or(0);
             let pattern = if w0 == w1 {
                 w0
             } else {
@@ -115,26 +115,64 @@ pub(super) fn emit_row<K: SpanSink, P: Palette<Color = K::Color>>(
     };
     let line = palette.line();
     if matches!(settings.mode, DrawMode::Surfaces | DrawMode::SurfacesDashed) {
+        // A word at a time: the line pixels and the faces' pixels of the line
+        // colour gather in `visible`, those of the palette's other colour in
+        // `hidden` (each word read before it is written); a face whose palette
+        // has no word form goes out pixel by pixel.
+        let mut other = None;
         for (k, chunk) in row.chunks(32).enumerate() {
-            let word = line_word(k, visible.get(k).copied().unwrap_or(0));
-            for (i, &cell) in chunk.iter().enumerate() {
-                let x = (32 * k + i) as u16;
-                let id = 0xFFFF - (cell & 0xFFFF) as u16;
-                let color = if word & (1 << i) != 0 {
-                    Some(line)
-                } else if id != 0xFFFF {
-                    palette.face(id, shades.of(id), x, y)
-                } else {
-                    None
-                };
-                runs.put(x, x + 1, color, sink)?;
+            let word = |m: &[u32]| m.get(k).copied().unwrap_or(0);
+            let lines_k = line_word(k, word(visible), word(hidden));
+            let (mut first, mut second) = (0u32, 0u32);
+            let x0 = (32 * k) as u16;
+            let mut i = 0;
+            while let Some(&cell) = chunk.get(i) {
+                let entry = cell & 0xFFFF;
+                let mut j = i + 1;
+                while chunk.get(j).is_some_and(|&c| c & 0xFFFF == entry) {
+                    j += 1;
+                }
+                if entry != 0 {
+                    let id = 0xFFFF - entry as u16;
+                    // Bits i..j, less the line pixels.
+                    let run = ((u32::MAX >> (32 - (j - i))) << i) & !lines_k;
+                    let shade = shades.of(id);
+                    match palette.face_word(id, shade, x0, y) {
+                        Some((m, a, b)) if a == line && other.is_none_or(|o| o == b) => {
+                            other = Some(b);
+                            first |= run & m;
+                            second |= run & !m;
+                        }
+                        _ => {
+                            let mut bits = run;
+                            while bits != 0 {
+                                let x = x0 + bits.trailing_zeros() as u16;
+                                bits &= bits - 1;
+                                runs.put(x, x + 1, palette.face(id, shade, x, y), sink)?;
+                            }
+                        }
+                    }
+                }
+                i = j;
             }
+            if let Some(v) = visible.get_mut(k) {
+                *v = lines_k | first;
+            }
+            if let Some(h) = hidden.get_mut(k) {
+                *h = second;
+            }
+        }
+        let n = width.div_ceil(32);
+        runs.put(width as u16, width as u16, None, sink)?;
+        runs.spans += sink.fill_mask(y, visible.get(..n).unwrap_or(&[]), line)?;
+        if let Some(b) = other {
+            runs.spans += sink.fill_mask(y, hidden.get(..n).unwrap_or(&[]), b)?;
         }
     } else {
         // Lines only: the row's line words go out whole.
         let n = width.div_ceil(32);
         for (k, w) in visible.iter_mut().enumerate().take(n) {
-            *w = line_word(k, *w);
+            *w = line_word(k, *w, hidden.get(k).copied().unwrap_or(0));
         }
         runs.spans += sink.fill_mask(y, visible.get(..n).unwrap_or(&[]), line)?;
     }

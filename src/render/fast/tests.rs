@@ -338,3 +338,165 @@ fn hole_labels_on_some_boundary_edges_or_off_them_are_refused() {
         );
     }
 }
+
+/// [`MonoPalette`](crate::render::MonoPalette) without its word form: the faces'
+/// pixels asked one by one; `every_other` keeps the word form for even faces.
+struct PixelByPixel {
+    mono: crate::render::MonoPalette,
+    every_other: bool,
+}
+
+impl Palette for PixelByPixel {
+    type Color = BinaryColor;
+    fn line(&self) -> BinaryColor {
+        self.mono.line()
+    }
+    fn face(&self, face: u16, shade: u8, x: u16, y: u16) -> Option<BinaryColor> {
+        self.mono.face(face, shade, x, y)
+    }
+    fn face_word(
+        &self,
+        face: u16,
+        shade: u8,
+        x0: u16,
+        y: u16,
+    ) -> Option<(u32, BinaryColor, BinaryColor)> {
+        (self.every_other && face % 2 == 0)
+            .then(|| self.mono.face_word(face, shade, x0, y))
+            .flatten()
+    }
+}
+
+/// A square pyramid seen from the side, so that its four faces have four shades.
+const PYRAMID: [[f32; 3]; 5] = [
+    [-1., -1., 0.],
+    [1., -1., 0.],
+    [1., 1., 0.],
+    [-1., 1., 0.],
+    [0., 0., 1.2],
+];
+const SIDES: [u32; 12] = [0, 1, 4, 1, 2, 4, 2, 3, 4, 3, 0, 4];
+const SIDE_OFFSETS: [u32; 5] = [0, 3, 6, 9, 12];
+
+#[test]
+fn surfaces_written_a_word_at_a_time_are_the_pixels_asked_one_by_one() {
+    let mesh = Mesh::new(&PYRAMID, &SIDES, &SIDE_OFFSETS).unwrap();
+    let b = bake(&mesh);
+    let baked = BakedMesh::new(mesh, &b.planes, &b.edges).unwrap();
+    let camera = Camera::new(
+        [1.5, -2.5, 3.],
+        [0., 0., 0.3],
+        [0., 0., 1.],
+        Projection::Perspective { fov_y_deg: 40.0 },
+        0.1,
+        20.0,
+    )
+    .unwrap();
+    let mono = crate::render::MonoPalette::default();
+    type Fb = crate::PackedFramebuffer<70, 64, { crate::packed_len(70, 64) }>;
+    for mode in [DrawMode::Surfaces, DrawMode::SurfacesDashed] {
+        let draw = |palette: &dyn Fn(&mut Fb, &mut Buffers) -> Stats| {
+            let mut fb = Fb::new();
+            let mut buffers = Buffers::new(5, 4, b.edges.len(), 70, 64);
+            let stats = palette(&mut fb, &mut buffers);
+            (fb, stats)
+        };
+        let render =
+            |fb: &mut Fb, buffers: &mut Buffers, p: &dyn Fn() -> PixelByPixel, word: bool| {
+                let s = settings(mode);
+                let mut engine = FastRenderer::<U4, 8, 8>::new();
+                if word {
+                    engine.render(
+                        &baked,
+                        &camera,
+                        &s,
+                        &mut buffers.workspace(),
+                        &mono,
+                        fb,
+                        &mut (),
+                    )
+                } else {
+                    engine.render(
+                        &baked,
+                        &camera,
+                        &s,
+                        &mut buffers.workspace(),
+                        &p(),
+                        fb,
+                        &mut (),
+                    )
+                }
+                .unwrap()
+            };
+        let one_by_one = || PixelByPixel {
+            mono,
+            every_other: false,
+        };
+        let mixed = || PixelByPixel {
+            mono,
+            every_other: true,
+        };
+        let (words, stats) = draw(&|fb, buf| render(fb, buf, &one_by_one, true));
+        let (pixels, _) = draw(&|fb, buf| render(fb, buf, &one_by_one, false));
+        let (half, _) = draw(&|fb, buf| render(fb, buf, &mixed, false));
+        assert_eq!(stats.faces_drawn, 4, "{mode:?}");
+        // The faces are dithered: fewer pixels on than with every face solid.
+        let solid = SolidPalette {
+            line: BinaryColor::On,
+            face: Some(BinaryColor::On),
+        };
+        let mut full = Fb::new();
+        let mut buffers = Buffers::new(5, 4, b.edges.len(), 70, 64);
+        FastRenderer::<U4, 8, 8>::new()
+            .render(
+                &baked,
+                &camera,
+                &settings(mode),
+                &mut buffers.workspace(),
+                &solid,
+                &mut full,
+                &mut (),
+            )
+            .unwrap();
+        let on = |fb: &Fb| {
+            (0..64)
+                .flat_map(|y| (0..70).map(move |x| (x, y)))
+                .filter(|&(x, y)| fb.pixel(x, y))
+                .count()
+        };
+        assert!(on(&words) > 100 && on(&full) > on(&words) + 100, "{mode:?}");
+        assert_eq!(words, pixels, "{mode:?}: word form against pixel by pixel");
+        assert_eq!(words, half, "{mode:?}: word form for every other face");
+        // Each pixel drawn once (MockDisplay fails on a pixel drawn twice).
+        let mut display = MockDisplay::<BinaryColor>::new();
+        let mut buffers = Buffers::new(5, 4, b.edges.len(), 64, 64);
+        FastRenderer::<U4, 8, 8>::new()
+            .render(
+                &baked,
+                &camera,
+                &settings(mode),
+                &mut buffers.workspace(),
+                &mixed(),
+                &mut FillSolid::new(&mut display).unwrap(),
+                &mut (),
+            )
+            .unwrap();
+    }
+}
+
+#[test]
+fn the_mono_palette_word_is_its_pixels() {
+    let mono = crate::render::MonoPalette::default();
+    for shade in [0u8, 31, 32, 100, 200, 254, 255] {
+        for y in 0..8u16 {
+            for x0 in 0..40u16 {
+                let (word, a, b) = mono.face_word(3, shade, x0, y).unwrap();
+                for k in 0..32u16 {
+                    let want = mono.face(3, shade, x0 + k, y).unwrap();
+                    let got = if word >> k & 1 == 1 { a } else { b };
+                    assert_eq!(got, want, "shade {shade} row {y} x0 {x0} bit {k}");
+                }
+            }
+        }
+    }
+}
