@@ -46,8 +46,15 @@ print('total', total)
 def short(fn):
     # typenum's sub-pixel parameter spelled out buries the method name.
     return re.sub(r'typenum::uint::UInt<[^ ]*(, typenum::bit::B[01]>)+', 'U', fn)
+# Calls: executions of the block at a function's first address (a loop back to
+# the entry would count too; none of the hot functions has one).
+entry = {}
+for start, _, fn in syms:
+    entry.setdefault(fn, start)
+print(f'{"instructions":>12} {"share":>6} {"calls":>9} function')
 for fn, w in by_fn.most_common(40):
-    print(f'{w:12d} {100*w/total:5.1f}% {short(fn)[:150]}')
+    calls = counts.get(entry.get(fn, -1), 0)
+    print(f'{w:12d} {100*w/total:5.1f}% {calls:9d} {short(fn)[:150]}')
 # top PCs with inlined frames
 import os
 top = sorted(((c * tb_size.get(pc, 1), pc) for pc, c in counts.items()), reverse=True)

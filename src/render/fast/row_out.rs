@@ -114,6 +114,7 @@ pub(super) fn emit_row<K: SpanSink, P: Palette<Color = K::Color>>(
         }
     };
     let line = palette.line();
+    let n = width.div_ceil(32);
     if matches!(settings.mode, DrawMode::Surfaces | DrawMode::SurfacesDashed) {
         // A word at a time: the line pixels and the faces' pixels of the line
         // colour gather in `visible`, those of the palette's other colour in
@@ -162,7 +163,7 @@ pub(super) fn emit_row<K: SpanSink, P: Palette<Color = K::Color>>(
                 *h = second;
             }
         }
-        let n = width.div_ceil(32);
+        // The pixels asked one by one: the last run.
         runs.put(width as u16, width as u16, None, sink)?;
         runs.spans += sink.fill_mask(y, visible.get(..n).unwrap_or(&[]), line)?;
         if let Some(b) = other {
@@ -170,12 +171,10 @@ pub(super) fn emit_row<K: SpanSink, P: Palette<Color = K::Color>>(
         }
     } else {
         // Lines only: the row's line words go out whole.
-        let n = width.div_ceil(32);
         for (k, w) in visible.iter_mut().enumerate().take(n) {
             *w = line_word(k, *w, hidden.get(k).copied().unwrap_or(0));
         }
         runs.spans += sink.fill_mask(y, visible.get(..n).unwrap_or(&[]), line)?;
     }
-    runs.put(width as u16, width as u16, None, sink)?;
     Ok(runs.spans)
 }

@@ -378,6 +378,39 @@ const PYRAMID: [[f32; 3]; 5] = [
 const SIDES: [u32; 12] = [0, 1, 4, 1, 2, 4, 2, 3, 4, 3, 0, 4];
 const SIDE_OFFSETS: [u32; 5] = [0, 3, 6, 9, 12];
 
+/// Draws `baked` in `mode` with `palette` into `sink` (room for 8 facets and 8
+/// lines, buffers for a 70 x 64 frame).
+fn draw_frame<P: Palette<Color = BinaryColor>, K: SpanSink<Color = BinaryColor>>(
+    baked: &BakedMesh<'_>,
+    camera: &Camera,
+    mode: DrawMode,
+    palette: &P,
+    sink: &mut K,
+) -> Stats
+where
+    K::Error: core::fmt::Debug,
+{
+    let faces = baked.mesh().face_count();
+    let mut buffers = Buffers::new(
+        baked.mesh().vertices().len(),
+        faces,
+        baked.edges().len(),
+        70,
+        64,
+    );
+    FastRenderer::<U4, 8, 8>::new()
+        .render(
+            baked,
+            camera,
+            &settings(mode),
+            &mut buffers.workspace(),
+            palette,
+            sink,
+            &mut (),
+        )
+        .unwrap()
+}
+
 #[test]
 fn surfaces_written_a_word_at_a_time_are_the_pixels_asked_one_by_one() {
     let mesh = Mesh::new(&PYRAMID, &SIDES, &SIDE_OFFSETS).unwrap();
@@ -393,94 +426,46 @@ fn surfaces_written_a_word_at_a_time_are_the_pixels_asked_one_by_one() {
     )
     .unwrap();
     let mono = crate::render::MonoPalette::default();
+    let one_by_one = PixelByPixel {
+        mono,
+        every_other: false,
+    };
+    let mixed = PixelByPixel {
+        mono,
+        every_other: true,
+    };
+    let solid = SolidPalette {
+        line: BinaryColor::On,
+        face: Some(BinaryColor::On),
+    };
     type Fb = crate::PackedFramebuffer<70, 64, { crate::packed_len(70, 64) }>;
+    let on = |fb: &Fb| {
+        (0..64)
+            .flat_map(|y| (0..70).map(move |x| (x, y)))
+            .filter(|&(x, y)| fb.pixel(x, y))
+            .count()
+    };
     for mode in [DrawMode::Surfaces, DrawMode::SurfacesDashed] {
-        let draw = |palette: &dyn Fn(&mut Fb, &mut Buffers) -> Stats| {
-            let mut fb = Fb::new();
-            let mut buffers = Buffers::new(5, 4, b.edges.len(), 70, 64);
-            let stats = palette(&mut fb, &mut buffers);
-            (fb, stats)
-        };
-        let render =
-            |fb: &mut Fb, buffers: &mut Buffers, p: &dyn Fn() -> PixelByPixel, word: bool| {
-                let s = settings(mode);
-                let mut engine = FastRenderer::<U4, 8, 8>::new();
-                if word {
-                    engine.render(
-                        &baked,
-                        &camera,
-                        &s,
-                        &mut buffers.workspace(),
-                        &mono,
-                        fb,
-                        &mut (),
-                    )
-                } else {
-                    engine.render(
-                        &baked,
-                        &camera,
-                        &s,
-                        &mut buffers.workspace(),
-                        &p(),
-                        fb,
-                        &mut (),
-                    )
-                }
-                .unwrap()
-            };
-        let one_by_one = || PixelByPixel {
-            mono,
-            every_other: false,
-        };
-        let mixed = || PixelByPixel {
-            mono,
-            every_other: true,
-        };
-        let (words, stats) = draw(&|fb, buf| render(fb, buf, &one_by_one, true));
-        let (pixels, _) = draw(&|fb, buf| render(fb, buf, &one_by_one, false));
-        let (half, _) = draw(&|fb, buf| render(fb, buf, &mixed, false));
+        let (mut words, mut pixels, mut half, mut full) =
+            (Fb::new(), Fb::new(), Fb::new(), Fb::new());
+        let stats = draw_frame(&baked, &camera, mode, &mono, &mut words);
+        draw_frame(&baked, &camera, mode, &one_by_one, &mut pixels);
+        draw_frame(&baked, &camera, mode, &mixed, &mut half);
+        draw_frame(&baked, &camera, mode, &solid, &mut full);
         assert_eq!(stats.faces_drawn, 4, "{mode:?}");
         // The faces are dithered: fewer pixels on than with every face solid.
-        let solid = SolidPalette {
-            line: BinaryColor::On,
-            face: Some(BinaryColor::On),
-        };
-        let mut full = Fb::new();
-        let mut buffers = Buffers::new(5, 4, b.edges.len(), 70, 64);
-        FastRenderer::<U4, 8, 8>::new()
-            .render(
-                &baked,
-                &camera,
-                &settings(mode),
-                &mut buffers.workspace(),
-                &solid,
-                &mut full,
-                &mut (),
-            )
-            .unwrap();
-        let on = |fb: &Fb| {
-            (0..64)
-                .flat_map(|y| (0..70).map(move |x| (x, y)))
-                .filter(|&(x, y)| fb.pixel(x, y))
-                .count()
-        };
         assert!(on(&words) > 100 && on(&full) > on(&words) + 100, "{mode:?}");
         assert_eq!(words, pixels, "{mode:?}: word form against pixel by pixel");
         assert_eq!(words, half, "{mode:?}: word form for every other face");
         // Each pixel drawn once (MockDisplay fails on a pixel drawn twice).
         let mut display = MockDisplay::<BinaryColor>::new();
-        let mut buffers = Buffers::new(5, 4, b.edges.len(), 64, 64);
-        FastRenderer::<U4, 8, 8>::new()
-            .render(
-                &baked,
-                &camera,
-                &settings(mode),
-                &mut buffers.workspace(),
-                &mixed(),
-                &mut FillSolid::new(&mut display).unwrap(),
-                &mut (),
-            )
-            .unwrap();
+        draw_frame(
+            &baked,
+            &camera,
+            mode,
+            &mixed,
+            &mut FillSolid::new(&mut display).unwrap(),
+        );
     }
 }
 
