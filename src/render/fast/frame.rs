@@ -111,11 +111,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             ..*settings
         };
         let mut pool_used = 0usize;
-        let mut shades = Shades {
-            planes: baked.planes(),
-            viewpoint: map.viewpoint,
-            last: (NONE, 0),
-        };
+        let mut shades = Shades::new(baked.planes(), map.viewpoint);
         let depth = settings.mode.needs_depth();
         let test = if depth { LineTest::Row } else { LineTest::None };
         for y in 0..height {
@@ -219,6 +215,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                 y as u16,
                 if ALONG { &solid } else { settings },
                 row,
+                lists.columns,
                 visible,
                 hidden,
                 palette,

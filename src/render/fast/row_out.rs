@@ -37,18 +37,34 @@ impl<C: PartialEq + Copy> Runs<C> {
     }
 }
 
+/// Shades kept, by face index modulo this (a power of two): a row's runs
+/// change face every few pixels, and the rows after it meet the same faces.
+const KEPT_SHADES: usize = 32;
+
 /// The shading of a face (|cos| between its normal and the eye direction, 0..255),
-/// with the last face asked kept.
+/// with the last shades asked kept (a square root each made, so kept).
 pub(super) struct Shades<'a> {
     pub planes: &'a [FacePlane],
     pub viewpoint: Viewpoint,
-    pub last: (u16, u8),
+    kept: [(u16, u8); KEPT_SHADES],
 }
 
-impl Shades<'_> {
+impl<'a> Shades<'a> {
+    /// None kept yet.
+    pub fn new(planes: &'a [FacePlane], viewpoint: Viewpoint) -> Self {
+        Self {
+            planes,
+            viewpoint,
+            kept: [(super::NONE, 0); KEPT_SHADES],
+        }
+    }
+
     fn of(&mut self, face: u16) -> u8 {
-        if self.last.0 == face {
-            return self.last.1;
+        let slot = usize::from(face) % KEPT_SHADES;
+        if let Some(&(f, shade)) = self.kept.get(slot) {
+            if f == face {
+                return shade;
+            }
         }
         let plane = self
             .planes
@@ -63,19 +79,22 @@ impl Shades<'_> {
         } else {
             0
         };
-        self.last = (face, shade);
+        if let Some(k) = self.kept.get_mut(slot) {
+            *k = (face, shade);
+        }
         shade
     }
 }
 
-/// Sends row `y` to `sink`: `row` holds the nearest face entries, `visible` and
-/// `hidden` the line masks (`visible` becomes the drawn line pixels). Returns the
-/// spans sent.
+/// Sends row `y` to `sink`: `row` holds the nearest face entries (none outside
+/// columns `faces`), `visible` and `hidden` the line masks (`visible` becomes the
+/// drawn line pixels). Returns the spans sent.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn emit_row<K: SpanSink, P: Palette<Color = K::Color>>(
     y: u16,
     settings: &Settings,
     row: &[u32],
+    faces: (usize, usize),
     visible: &mut [u32],
     hidden: &mut [u32],
     palette: &P,
@@ -126,7 +145,12 @@ pub(super) fn emit_row<K: SpanSink, P: Palette<Color = K::Color>>(
             let lines_k = line_word(k, word(visible), word(hidden));
             let (mut first, mut second) = (0u32, 0u32);
             let x0 = (32 * k) as u16;
-            let mut i = 0;
+            // Words without faces' columns hold no face.
+            let mut i = if 32 * k + 32 <= faces.0 || 32 * k >= faces.1 {
+                chunk.len()
+            } else {
+                0
+            };
             while let Some(&cell) = chunk.get(i) {
                 let entry = cell & 0xFFFF;
                 let mut j = i + 1;
@@ -177,4 +201,33 @@ pub(super) fn emit_row<K: SpanSink, P: Palette<Color = K::Color>>(
         runs.spans += sink.fill_mask(y, visible.get(..n).unwrap_or(&[]), line)?;
     }
     Ok(runs.spans)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Faces 1 and 33 share a kept slot: each is asked in turn, and each still
+    /// gets its own shade (the one a fresh `Shades` makes).
+    #[test]
+    fn faces_sharing_a_kept_shade_slot_keep_their_own_shades() {
+        let plane = |z: f32| FacePlane {
+            normal: [0.0, 1.0 - z, z],
+            centroid: [0.0; 3],
+        };
+        let mut planes = [plane(0.0); 40];
+        planes[1] = plane(1.0);
+        planes[33] = plane(0.5);
+        let view = Viewpoint::Orthographic {
+            direction_to_eye: [0.0, 0.0, 1.0],
+        };
+        let fresh = |face: u16| Shades::new(&planes, view).of(face);
+        let (one, other) = (fresh(1), fresh(33));
+        assert_ne!(one, other, "the two faces face the eye differently");
+        let mut shades = Shades::new(&planes, view);
+        for face in [1, 33, 33, 1, 1, 33] {
+            let expected = if face == 1 { one } else { other };
+            assert_eq!(shades.of(face), expected, "face {face}");
+        }
+    }
 }
