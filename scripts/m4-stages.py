@@ -1,0 +1,117 @@
+#!/usr/bin/env python3
+"""Reads QEMU `-d in_asm,exec,nochain` output on stdin; see scripts/m4-stages."""
+import collections
+import re
+import subprocess
+import sys
+
+binary, frames = sys.argv[1], int(sys.argv[2])
+
+# Every executed instruction is charged to the first stage whose pattern matches
+# a function of its inlined call chain, searched from the outermost caller in.
+STAGES = [
+    ('outside', r'fnv1a64|paint_stack|stack_peak|^Reset$|__cortex_m_rt_main$|core::fmt'
+                r'|semihosting|BakedMesh>::new|Mesh>::new|with_planar_faces|memcmp'),
+    ('transform', r'ScreenMap>::new|ScreenMap>::vertex'),
+    ('lines: set-up', r'::activate_line'),
+    ('lists', r'>::lists$'),
+    ('face activation', r'>::activate(_other|_clipped)?$|::push_facets$|facets::facet$'
+                        r'|::push_with|::set_slope$'),
+    ('facet rows', r'ActiveFacets<\d+>>::fill_row|Facet>::'),
+    ('lines: pixels', r'line_row|ActiveLine>::'),
+    ('rows out', r'emit_row|fill_mask|write_mask|Pattern>::word'),
+    ('clears', r'clear_row|Framebuffer<.*>::clear$|memclr|memset'),
+]
+# Issue 23's goals a frame, and for suzanne the stage budgets of
+# ../shared/FAST-FRAME.md ("A design that fits 0.8 M", all faces).
+example = binary.rsplit('/', 1)[-1]
+GOAL = {'suzanne': 800_000, 'panel': 50_000}.get(example)
+BUDGET = {
+    'transform': 18_000,
+    'lists': 11_000 + 8_000,
+    'face activation': 70_000,
+    'facet rows': 229_000 + 242_000,
+    'lines: set-up': None,
+    'lines: pixels': None,
+    'rows out': None,
+    'clears': 13_000,
+}
+LINES_BUDGET = 211_000  # FAST-FRAME's "lines" covers both line stages
+if example != 'suzanne':
+    BUDGET, LINES_BUDGET = {}, None
+
+
+def executed():
+    """Instruction address -> times executed."""
+    blocks, counts = {}, collections.Counter()
+    start, addrs, in_block = None, [], False
+    for line in sys.stdin:
+        if line.startswith('IN:'):
+            in_block, start, addrs = True, None, []
+            continue
+        if in_block:
+            m = re.match(r'0x([0-9a-f]+):', line)
+            if m:
+                a = int(m.group(1), 16)
+                start = a if start is None else start
+                addrs.append(a)
+                continue
+            if start is not None:
+                blocks[start] = addrs
+            in_block = False
+        m = re.search(r'Trace \d+: 0x[0-9a-f]+ \[[0-9a-f]+/([0-9a-f]+)/', line)
+        if m:
+            counts[int(m.group(1), 16)] += 1
+    per = collections.Counter()
+    for pc, c in counts.items():
+        for a in blocks.get(pc, [pc]):
+            per[a] += c
+    return per
+
+
+def chains(addrs):
+    """Address -> its inlined call chain (innermost first), through addr2line."""
+    out = subprocess.run(['addr2line', '-f', '-i', '-C', '-a', '-e', binary]
+                         + [hex(a) for a in addrs], capture_output=True, text=True).stdout
+    result, cur, names, odd = {}, None, [], True
+    for line in out.splitlines():
+        if re.fullmatch(r'0x[0-9a-f]+', line):
+            if cur is not None:
+                result[cur] = names
+            cur, names, odd = int(line, 16), [], True
+        else:
+            if odd:
+                names.append(line)
+            odd = not odd
+    if cur is not None:
+        result[cur] = names
+    return result
+
+
+per = executed()
+stage_of = {}
+totals = collections.Counter()
+for a, names in chains(sorted(per)).items():
+    stage = 'frame loop'
+    for name in reversed(names):
+        hit = next((s for s, pat in STAGES if re.search(pat, name)), None)
+        if hit:
+            stage = hit
+            break
+    totals[stage] += per[a]
+inside = sum(w for s, w in totals.items() if s != 'outside')
+print(f'{"stage":<18} {"a frame":>10} {"share":>6} {"budget":>9} {"x budget":>8}')
+order = ['transform', 'lists', 'face activation', 'facet rows', 'lines: set-up',
+         'lines: pixels', 'rows out', 'clears', 'frame loop']
+for s in order:
+    w = totals[s] / frames
+    b = BUDGET.get(s)
+    ratio = f'{w / b:8.1f}' if b else f'{"":>8}'
+    print(f'{s:<18} {w:10.0f} {100 * totals[s] / inside:5.1f}% {b or "":>9} {ratio}')
+lines = (totals['lines: set-up'] + totals['lines: pixels']) / frames
+if LINES_BUDGET:
+    print(f'{"lines, both":<18} {lines:10.0f} {"":>6} {LINES_BUDGET:>9} {lines / LINES_BUDGET:8.1f}')
+frame = inside / frames
+goal = f'{GOAL:>9} {frame / GOAL:8.1f}' if GOAL else ''
+print(f'{"frame":<18} {frame:10.0f} {"":>6} {goal}')
+print(f'(outside the counted frames, not shown: {totals["outside"]} over the run)')
