@@ -79,7 +79,7 @@ pub fn render_grey(
         11 => grey_s::<U11>(mesh, cam, spec, palette),
         12 => grey_s::<U12>(mesh, cam, spec, palette),
         s => Err(format!(
-            "--grey: needs --subpixel 2 to 12 (sub-samples at eighths of a pixel), not {s}"
+            "needs --subpixel 2 to 12 (sub-samples at eighths of a pixel), not {s}"
         )),
     }
 }
@@ -134,7 +134,7 @@ fn grey_sd<Frac: LeEqU32, D: Depth>(
             &mut sink,
             &mut (),
         )
-        .map_err(|e| format!("render: {e}"))?;
+        .map_err(|e| e.to_string())?;
     let time_us = start.elapsed().as_micros() as u64;
     Ok(GreyFrame {
         width: w,

@@ -347,3 +347,20 @@ fn scheme_flag_draws_or_names_the_broken_condition() {
         "{err}"
     );
 }
+
+/// `--grey` looks at most 64 faces at a pixel: the teapot at 128x64 has more under
+/// some pixels. The error names the flag, like every other (it said "render: render:
+/// capacity ...", naming neither the flag nor the output).
+#[test]
+fn grey_past_its_faces_at_a_pixel_names_the_flag() {
+    let d = Dir::new("grey-capacity");
+    let teapot = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/models/teapot.obj");
+    let grey = d.path("grey.png");
+    let args = [s(&teapot), "--size", "128x64", "--mode", "surfaces"];
+    let err = fails_with(
+        &render(&[&args[..], &["--grey", s(&grey)]].concat()),
+        "--grey: ",
+    );
+    assert!(err.contains("capacity 64 exceeded"), "{err}");
+    assert!(!err.contains("render: render:"), "{err}");
+}

@@ -109,7 +109,9 @@ fn write_png(o: &Options, path: &Path, frame: &Frame) -> Result<(), Fail> {
 /// `--grey`: the frame rendered again with anti-aliased face edges
 /// (`host_tests::grey`), each pixel a `scale x scale` block of grey.
 fn write_grey(o: &Options, path: &Path, mesh: &MeshData, camera: &CameraSpec) -> Result<(), Fail> {
-    let frame = render_grey(mesh, camera, &o.spec, &shades()).map_err(bad)?;
+    // Every error names its flag (`--help`).
+    let frame =
+        render_grey(mesh, camera, &o.spec, &shades()).map_err(|e| bad(format!("--grey: {e}")))?;
     let (w, h, s) = (frame.width, frame.height, o.scale);
     let mut rgb = Vec::with_capacity(w * s * h * s * 3);
     for y in 0..h {
