@@ -21,11 +21,12 @@ use embedded_graphics_core::pixelcolor::{Gray8, GrayColor, PixelColor};
 use heapless::Vec;
 
 use super::compose::{self, shade, Compose, FrameProbe, SolidPalette};
-use super::coverage::covers;
 use super::lines::LineMasks;
 use super::transform::{ProjectedVertex, ScreenVertex};
-use super::zband::{DepthPlane, IdBand};
 use super::{bit, face_polygon, DrawMode, FrameCtx, Settings};
+use crate::render::band::IdBand;
+use crate::render::depth::coverage::covers;
+use crate::render::depth::plane::DepthPlane;
 use crate::{Error, Span, SpanSink};
 
 /// The fewest sub-pixel bits for which the sub-samples, at odd eighths of a pixel,

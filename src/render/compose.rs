@@ -4,9 +4,9 @@ use embedded_graphics_core::pixelcolor::{BinaryColor, PixelColor};
 
 use super::lines::LineMasks;
 use super::transform::ProjectedVertex;
-use super::zband::IdBand;
 use super::{bit, DrawMode, FrameCtx, Settings};
 use crate::mesh::Viewpoint;
+use crate::render::band::IdBand;
 use crate::{Error, Span, SpanSink};
 
 /// The colours of a frame.

@@ -8,10 +8,10 @@ use embedded_graphics_core::pixelcolor::PixelColor;
 use super::compose::{self, FrameProbe, Palette};
 use super::lines::{line_pass, LineMasks};
 use super::transform::ProjectedVertex;
-use super::zband::IdBand;
 use super::{band_rows, begin_frame, FrameCtx, Settings, Stats};
 use crate::camera::Camera;
 use crate::mesh::{EdgeAdjacency, Mesh};
+use crate::render::band::IdBand;
 use crate::{Error, SpanSink};
 
 /// Storage the caller lends for one frame of an id-filling engine. Sizes:

@@ -11,10 +11,10 @@
 
 mod abuffer;
 mod active;
-mod bend;
+mod band;
 mod codefill;
 mod compose;
-mod coverage;
+mod depth;
 mod fast;
 mod idpass;
 mod lines;
@@ -56,8 +56,8 @@ pub use zbuffer::ZBufferRenderer;
 use crate::camera::Camera;
 use crate::mesh::{bit, set_bit, EdgeAdjacency, Mesh, Viewpoint};
 use crate::{Error, Pattern, Viewport};
+use band::IdBand;
 use transform::FixedView;
-use zband::IdBand;
 
 /// What a frame shows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]

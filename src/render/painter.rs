@@ -13,14 +13,14 @@ use heapless::Vec;
 
 use super::codefill::DepthOrder;
 use super::compose::{FrameProbe, Palette};
-use super::coverage::{covers_centre, fragments_may_overlap};
 use super::idpass::{render_ids, FrameInput, IdPass, IdWorkspace};
 use super::transform::{ProjectedVertex, ScreenVertex};
-use super::zband::IdBand;
 use super::{bit, index_polygon, need, FrameCtx, Settings, Stats};
 use crate::camera::Camera;
 use crate::geometry::Subpixel;
 use crate::mesh::{EdgeAdjacency, Mesh};
+use crate::render::band::IdBand;
+use crate::render::depth::coverage::{covers_centre, fragments_may_overlap};
 use crate::{Error, FillRule, ScanConverter, ScreenPoint, Span, SpanSink, Viewport};
 
 /// The list a [`PainterRenderer`] paints.

@@ -6,16 +6,16 @@
 use fixed::types::extra::LeEqU32;
 use heapless::Vec;
 
-use super::bend::{Bend, FaceView};
-use super::coverage::{covers, covers_centre};
-use super::lines::{edge_on_screen, walk_segment, REACH_COVERING};
+use super::lines::{edge_on_screen, walk_segment, Bend, REACH_COVERING};
 use super::transform::{ProjectedVertex, ScreenVertex};
-use super::zband::DepthPlane;
-use super::zfan::{fan_depth_at, takes_fan_depth};
 use super::{begin_frame, bit, face_polygon, need, Settings, Stats};
 use crate::camera::Camera;
 use crate::geometry::Subpixel;
 use crate::mesh::{face_owns_edge, EdgeAdjacency, EdgeKind, Mesh};
+use crate::render::depth::coverage::{covers, covers_centre};
+use crate::render::depth::fan::FaceView;
+use crate::render::depth::fan::{fan_depth_at, takes_fan_depth};
+use crate::render::depth::plane::DepthPlane;
 use crate::{Error, Viewport};
 
 /// A feature edge drawn through the picked pixel.

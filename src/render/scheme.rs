@@ -30,12 +30,12 @@ use super::compose::{FrameProbe, Palette};
 use super::idpass::{render_ids, FrameInput, IdPass, IdWorkspace};
 use super::painter::reaches;
 use super::transform::{ProjectedVertex, ScreenVertex};
-use super::zband::IdBand;
 use super::{bit, face_polygon, need, FrameCtx, Settings, Stats};
 use crate::camera::Camera;
 use crate::codes::{ColourTable, CombinationScheme, PathScheme, SchemeViolation, Visible};
 use crate::geometry::Subpixel;
 use crate::mesh::{EdgeAdjacency, Mesh};
+use crate::render::band::IdBand;
 use crate::{Error, FillRule, ScanConverter, ScreenPoint, Span, SpanSink, Viewport};
 
 /// Which path of the occlusion graph each pixel lies on: the paper's screen

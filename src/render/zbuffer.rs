@@ -14,12 +14,15 @@ use super::abuffer::{GreyCompose, GreyPalette, SmallFace, GREY_MIN_BITS};
 use super::compose::{self, Compose, FrameProbe, Palette};
 use super::lines::{line_pass, LineMasks};
 use super::transform::{ProjectedVertex, ScreenVertex};
-use super::zband::{Depth, DepthPlane, FaceSpans, IdBand, ZBand};
-use super::zfan::{fan_rows, takes_fan_depth, FanRow, FanSpans};
+use super::zband::{Depth, FaceSpans, ZBand};
+use super::zfan::{fan_rows, FanRow, FanSpans};
 use super::{band_rows, begin_frame, bit, face_polygon, FrameCtx, Settings, Stats, Workspace};
 use crate::camera::Camera;
 use crate::geometry::Subpixel;
 use crate::mesh::{EdgeAdjacency, Mesh};
+use crate::render::band::IdBand;
+use crate::render::depth::fan::takes_fan_depth;
+use crate::render::depth::plane::DepthPlane;
 use crate::scan::RowRange;
 use crate::{Error, FillRule, ScanConverter, ScreenPoint, SpanSink};
 

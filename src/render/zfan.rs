@@ -17,65 +17,14 @@ use core::convert::Infallible;
 use embedded_graphics_core::pixelcolor::BinaryColor;
 use heapless::Vec;
 
-use super::bend::{bend, triangle_at, ROUNDING};
-use super::lines::polygon_contains;
+use super::depth::fan::fan_corners;
+use super::depth::plane::{DepthPlane, RowPlane};
 use super::transform::{ProjectedVertex, ScreenVertex};
-use super::zband::{Depth, DepthPlane, RowPlane, ZBand};
+use super::zband::{Depth, ZBand};
 use crate::mesh::Mesh;
-use crate::order::is_planar;
 use crate::scan::edge::{Edge, EdgeLine};
 use crate::scan::RowRange;
 use crate::{Span, SpanSink, Viewport, GUARD_BAND_PX};
-
-/// Does face `f`, on screen `poly` with single plane `plane`, take its depth from its
-/// fan triangles (more than three corners, not planar by [`is_planar`])? Only where
-/// the plane leaves some corner ([`bend`]) by more than the rounding and more than the
-/// plane's change of depth over one pixel. A smaller bend is left to the plane, a
-/// trade measured in `host_tests/tests/non_planar_faces.rs`: on the twisted quads
-/// 1 + 171 depth-order and far pixels of 378,765 against 2 + 157 with fan depth for
-/// every face not planar, on suzanne 2 + 0 against 1 + 0, and the Z-buffer draws
-/// suzanne in 13 % fewer instructions. The (f64) planarity test, asked last, keeps a
-/// planar face whose snapped vertices bend it (coarse sub-pixel precision) on its
-/// plane, as every engine that has one plane per face draws it.
-pub(crate) fn takes_fan_depth(
-    mesh: &Mesh<'_>,
-    f: usize,
-    poly: &[ScreenVertex],
-    plane: &DepthPlane,
-) -> bool {
-    mesh.face(f).len() > 3 && poly.len() > 3 && bends(poly, plane) && !is_planar(mesh, f)
-}
-
-/// Whether `plane` leaves a corner of `poly` by more than the rounding and its change of
-/// depth over one pixel (out of line: asked of quads only, kept out of the loops that
-/// draw triangles).
-#[inline(never)]
-fn bends(poly: &[ScreenVertex], plane: &DepthPlane) -> bool {
-    bend(poly, plane) > ROUNDING.max(plane.change_per_pixel())
-}
-
-/// The fan triangles `(v0, vk, vk+1)` of face `f` on screen, those with every corner
-/// inside the view volume (others project to something else than the triangle).
-pub(crate) fn fan_corners<'a>(
-    mesh: &'a Mesh<'_>,
-    vertices: &'a [ProjectedVertex],
-    f: usize,
-) -> impl Iterator<Item = [ScreenVertex; 3]> + 'a {
-    let corner = move |v: &u32| {
-        vertices
-            .get(*v as usize)
-            .and_then(ProjectedVertex::projection)
-    };
-    let face = mesh.face(f);
-    let v0 = face.first().and_then(corner);
-    face.get(1..)
-        .unwrap_or(&[])
-        .windows(2)
-        .filter_map(move |pair| match pair {
-            [a, b] => Some([v0?, corner(a)?, corner(b)?]),
-            _ => None,
-        })
-}
 
 /// A fan triangle's depth along the rows, its edges (DDAs of the scan converter, set
 /// up at the band's first row, each moved on to the row asked for), and its run of
@@ -180,41 +129,6 @@ pub(crate) fn fan_rows<const POLY: usize>(
         }
     }
     kept + 2 == mesh.face(f).len()
-}
-
-/// Nearness at the centre of pixel (`x`, `y`) of face `f`, not planar: that of the
-/// nearest of its fan triangles (those [`fan_rows`] keeps) that holds the centre,
-/// evaluated there from the triangle's corners; `None` when none does (the face's
-/// single plane decides then). A centre exactly on a fan triangle's edge counts for
-/// it here (on the diagonal both triangles, whose planes meet there, are asked). For
-/// the few pixels where the single plane cannot decide.
-#[inline(never)]
-pub(crate) fn fan_depth_at(
-    mesh: &Mesh<'_>,
-    vertices: &[ProjectedVertex],
-    f: usize,
-    s: u32,
-    (x, y): (u16, u16),
-) -> Option<u32> {
-    let limit = i64::from(GUARD_BAND_PX) << s;
-    let inside = |v: &ScreenVertex| i64::from(v.x).abs() <= limit && i64::from(v.y).abs() <= limit;
-    let centre = |k: u16| (2 * i64::from(k) + 1) << s;
-    let (cx, cy) = (centre(x), centre(y));
-    fan_corners(mesh, vertices, f)
-        .filter(|corners| corners.iter().all(inside) && polygon_contains(corners, cx, cy))
-        .filter_map(|corners| clamped_at(&corners, cx, cy))
-        .max()
-}
-
-/// Nearness of the triangle's plane at (`x`, `y`) (half sub-pixel units, a point
-/// inside it), clamped to its corners' range (which holds it but for the rounding);
-/// `None` when it has no area on screen.
-fn clamped_at(corners: &[ScreenVertex; 3], x: i64, y: i64) -> Option<u32> {
-    let q = triangle_at(corners, x, y)?;
-    let (lo, hi) = corners
-        .iter()
-        .fold((u32::MAX, 0), |(lo, hi), v| (lo.min(v.q), hi.max(v.q)));
-    Some(q.clamp(i64::from(lo), i64::from(hi)) as u32)
 }
 
 /// A span sink that depth-tests the spans of one face that is not planar into a

@@ -27,11 +27,12 @@ use super::active::{ActiveEdge, ActiveEdges};
 use super::compose::{self, FrameProbe, Palette};
 use super::lines::{line_pass, LineMasks};
 use super::transform::{ProjectedVertex, ScreenVertex};
-use super::zband::{IdBand, RowPlane};
 use super::{band_rows, begin_frame, bit, index_polygon, need, FrameCtx, Settings, Stats};
 use crate::camera::Camera;
 use crate::geometry::Subpixel;
 use crate::mesh::{EdgeAdjacency, Mesh};
+use crate::render::band::IdBand;
+use crate::render::depth::plane::RowPlane;
 use crate::{Error, SpanSink};
 
 /// Storage the caller lends the code-fill engine for one frame. Sizes: `vertices`
@@ -171,7 +172,7 @@ struct ActiveFace {
     /// `coverage::folded`): its fragments can overlap on screen, and the face covers
     /// a pixel only where an odd number of them do.
     fold: bool,
-    /// Planes: how far its fan triangles may leave `plane` ([`bend`](super::bend::bend)),
+    /// Planes: how far its fan triangles may leave `plane` ([`bend`](crate::render::depth::fan::bend)),
     /// 0 for a planar face (see `resolve_overlap`).
     bend: u32,
     /// The row after its last.

@@ -5,9 +5,9 @@ use fixed::types::extra::LeEqU32;
 
 use super::{ActiveFace, CodeFillRenderer, Surfaces, NO_FACE};
 use crate::mesh::Mesh;
-use crate::render::bend::ROUNDING;
+use crate::render::depth::fan::fan_depth_at;
+use crate::render::depth::fan::ROUNDING;
 use crate::render::transform::ProjectedVertex;
-use crate::render::zfan::fan_depth_at;
 use crate::render::FrameCtx;
 
 impl<
@@ -325,8 +325,8 @@ impl<'a> RowFaces<'a> {
 #[cfg(test)]
 mod tests {
     use super::{nearest_by_range, ActiveFace, Nearest, NO_FACE};
+    use crate::render::depth::plane::DepthPlane;
     use crate::render::transform::ScreenVertex;
-    use crate::render::zband::DepthPlane;
 
     /// xorshift, so a failure can be replayed.
     struct Dice(u64);

@@ -14,9 +14,9 @@
 //! apart where two faces cross.) The pruning bound, a face's largest corner
 //! nearness, holds its fan triangles too.
 //!
-//! [`fan_depth_at`]: super::zfan::fan_depth_at
+//! [`fan_depth_at`]: crate::render::depth::fan::fan_depth_at
 //!
-//! [`covers_centre`]: super::coverage::covers_centre
+//! [`covers_centre`]: crate::render::depth::coverage::covers_centre
 //!
 //! Pruning without losing that rule: the faces that can matter at a pixel are the
 //! set H of the nearest covering faces closed under "within a tie": walking the
@@ -49,12 +49,13 @@ use heapless::Vec;
 use super::compose::{FrameProbe, Palette};
 use super::idpass::{render_ids, FrameInput, IdPass, IdWorkspace};
 use super::transform::{ProjectedVertex, ScreenVertex};
-use super::zband::{DepthPlane, IdBand, RowPlane};
-use super::zfan::takes_fan_depth;
 use super::{bit, face_polygon, need, FrameCtx, Settings, Stats};
 use crate::camera::Camera;
 use crate::geometry::Subpixel;
 use crate::mesh::{EdgeAdjacency, Mesh};
+use crate::render::band::IdBand;
+use crate::render::depth::fan::takes_fan_depth;
+use crate::render::depth::plane::{DepthPlane, RowPlane};
 use crate::{Error, SpanSink};
 use bvh::centre_box;
 
@@ -108,7 +109,7 @@ pub struct RayFace {
     face: u16,
     clipped: bool,
     /// Not planar: its depth is its fan triangle's at each centre
-    /// ([`takes_fan_depth`](super::zfan::takes_fan_depth)).
+    /// ([`takes_fan_depth`]).
     bent: bool,
 }
 

@@ -6,9 +6,9 @@
 use heapless::Vec;
 
 use super::{Cast, TILE_FACES};
-use crate::render::coverage::covers_centre;
+use crate::render::depth::coverage::covers_centre;
+use crate::render::depth::fan::fan_depth_at;
 use crate::render::transform::{ProjectedVertex, ScreenVertex};
-use crate::render::zfan::fan_depth_at;
 use crate::render::{face_polygon, FrameCtx};
 use crate::Error;
 

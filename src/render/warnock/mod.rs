@@ -53,17 +53,18 @@ use embedded_graphics_core::pixelcolor::PixelColor;
 use fixed::types::extra::LeEqU32;
 use heapless::Vec;
 
-use super::bend::{bend, ROUNDING};
 use super::compose::{FrameProbe, Palette};
-use super::coverage::covers_centre;
 use super::idpass::{render_ids, FrameInput, IdPass, IdWorkspace};
 use super::transform::{ProjectedVertex, ScreenVertex};
-use super::zband::{DepthPlane, IdBand};
-use super::zfan::{fan_depth_at, takes_fan_depth};
 use super::{bit, face_polygon, need, FrameCtx, Settings, Stats};
 use crate::camera::Camera;
 use crate::geometry::Subpixel;
 use crate::mesh::{EdgeAdjacency, Mesh};
+use crate::render::band::IdBand;
+use crate::render::depth::coverage::covers_centre;
+use crate::render::depth::fan::{bend, ROUNDING};
+use crate::render::depth::fan::{fan_depth_at, takes_fan_depth};
+use crate::render::depth::plane::DepthPlane;
 use crate::{Error, SpanSink};
 use geom::{convex_orientation, outside_an_edge, PixelBox, Rect};
 

@@ -4,12 +4,17 @@
 
 use heapless::Vec;
 
-use super::bend::{Bend, FaceView};
-use super::coverage::covers;
+mod bend;
+
+pub(crate) use bend::Bend;
+
 use super::transform::{ProjectedVertex, ScreenVertex};
-use super::zband::{DepthPlane, IdBand};
 use super::{bit, face_polygon, FrameCtx, Settings};
 use crate::mesh::{face_owns_edge, EdgeAdjacency, EdgeKind, Mesh, MeshEdge};
+use crate::render::band::IdBand;
+use crate::render::depth::coverage::covers;
+use crate::render::depth::fan::FaceView;
+use crate::render::depth::plane::DepthPlane;
 use crate::scan::edge::div_rem_euclid;
 
 /// Visible and hidden line pixels of one band, bit-packed: bit `k` of word `w` of a
@@ -198,41 +203,6 @@ impl Stepper {
             self.quotient += 1;
         }
     }
-}
-
-/// True when point (x, y) (half sub-pixel units) is inside `poly` by the even-odd
-/// rule (points exactly on an edge count as inside).
-pub(crate) fn polygon_contains(poly: &[ScreenVertex], x: i64, y: i64) -> bool {
-    // Each edge (a, b), the closing one first: the parity does not depend on the
-    // order, and neither does the answer on an edge.
-    let Some(mut a) = poly.last() else {
-        return false;
-    };
-    let mut inside = false;
-    for b in poly {
-        let (ay, by) = (2 * i64::from(a.y), 2 * i64::from(b.y));
-        if (ay <= y) != (by <= y) {
-            let (ax, bx) = (2 * i64::from(a.x), 2 * i64::from(b.x));
-            // Orientation of the point against the edge, taken upward.
-            let (lx, ly, hx, hy) = if ay < by {
-                (ax, ay, bx, by)
-            } else {
-                (bx, by, ax, ay)
-            };
-            // Inside the guard band every difference is below 2^28 half-units:
-            // 32-bit factors with a 64-bit product (one multiply on a Cortex-M4).
-            let wide = |a: i64, b: i64| i64::from(a as i32) * i64::from(b as i32);
-            let cross = wide(hx - lx, y - ly) - wide(hy - ly, x - lx);
-            if cross == 0 {
-                return true;
-            }
-            if cross > 0 {
-                inside = !inside;
-            }
-        }
-        a = b;
-    }
-    inside
 }
 
 /// Draws the feature edges that reach the band into the masks. Bands come top to

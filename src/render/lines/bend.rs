@@ -7,26 +7,12 @@
 //! point nearer to the plane than that asks for the depth of the fan triangle that
 //! holds it, evaluated there from the triangle's corners (a plane set up and kept
 //! would cost a hundred bytes of a small stack, for a question seldom asked).
+//!
+//! [`DepthPlane::new`]: crate::render::depth::plane::DepthPlane::new
 
-use super::lines::{margin, polygon_contains, EdgePixel};
-use super::transform::{ProjectedVertex, ScreenVertex};
-use super::zband::{exact_at, half_units, plane_through, DepthPlane, STEP_BITS};
-use super::zfan::fan_corners;
-use crate::mesh::Mesh;
-
-/// Nearness units added to a bend for the rounding of the fixed-point planes.
-pub(crate) const ROUNDING: u32 = 16;
-
-/// A face as the line test sees it: its index, its polygon on screen and single
-/// plane, and what its fan triangles are made of.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct FaceView<'a> {
-    pub mesh: &'a Mesh<'a>,
-    pub vertices: &'a [ProjectedVertex],
-    pub f: usize,
-    pub poly: &'a [ScreenVertex],
-    pub plane: &'a DepthPlane,
-}
+use super::{margin, EdgePixel};
+use crate::render::depth::coverage::polygon_contains;
+use crate::render::depth::fan::{bend, fan_corners, triangle_at, FaceView, ROUNDING};
 
 /// How far a face's fan triangles leave its single plane, found when first asked.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -90,20 +76,6 @@ impl Bend {
     }
 }
 
-/// The largest difference of nearness between a corner of `poly` and `plane` there
-/// (the plane unclamped: clamped to the vertices' range at a corner, it could meet
-/// the corner there and still leave the fan triangle between).
-pub(crate) fn bend(poly: &[ScreenVertex], plane: &DepthPlane) -> u32 {
-    poly.iter()
-        .map(|c| {
-            let q = plane.unclamped(2 * i64::from(c.x), 2 * i64::from(c.y));
-            let d = q.abs_diff(i64::from(c.q) << STEP_BITS) >> STEP_BITS;
-            u32::try_from(d).unwrap_or(u32::MAX)
-        })
-        .max()
-        .unwrap_or(0)
-}
-
 /// Nearness at (`px`, `py`) of the face's nearest fan triangle among those whose
 /// projection holds (`x`, `y`) (several where the face folds on screen, or on the
 /// diagonal between two); `None` when none holds it. Half sub-pixel units.
@@ -113,12 +85,4 @@ fn fan_at(face: &FaceView<'_>, x: i64, y: i64, (px, py): (i64, i64)) -> Option<i
         .filter(|corners| polygon_contains(corners, x, y))
         .filter_map(|corners| triangle_at(&corners, px, py))
         .max()
-}
-
-/// Nearness at (`x`, `y`) (half sub-pixel units) of the plane through a triangle's
-/// corners, `None` when it has no area on screen.
-pub(crate) fn triangle_at([v0, v1, v2]: &[ScreenVertex; 3], x: i64, y: i64) -> Option<i64> {
-    let (x0, y0, q0) = half_units(v0);
-    let coefficients = plane_through(v0, v1, v2);
-    (coefficients.2 != 0).then(|| exact_at(q0, coefficients, x - x0, y - y0))
 }

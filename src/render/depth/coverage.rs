@@ -1,11 +1,12 @@
 //! The coverage point test of CONVENTIONS.md on one projected polygon: the same
 //! answer as the scan converter's rows (`scan::edge`), one point at a time, for the
 //! engines that sample rather than scan (area subdivision, ray casting, picking,
-//! sub-pixel coverage).
+//! sub-pixel coverage); and [`polygon_contains`], whose boundary counts as inside,
+//! for the line test's fan triangles.
 
-use super::transform::{ProjectedVertex, ScreenVertex};
 use crate::mesh::Mesh;
 use crate::order::is_planar;
+use crate::render::transform::{ProjectedVertex, ScreenVertex};
 
 /// Whether the point (`px`, `py`), in half sub-pixel units (`2^-(S+1)` px), is
 /// inside `poly` under the even-odd rule, a point on the boundary counting when the
@@ -142,6 +143,41 @@ pub(crate) fn has_area(poly: &[ScreenVertex]) -> bool {
 pub(crate) fn covers_centre(poly: &[ScreenVertex], s: u32, i: i64, j: i64) -> bool {
     let h = 1i64 << s;
     covers(poly, (2 * i + 1) * h, (2 * j + 1) * h)
+}
+
+/// True when point (x, y) (half sub-pixel units) is inside `poly` by the even-odd
+/// rule (points exactly on an edge count as inside).
+pub(crate) fn polygon_contains(poly: &[ScreenVertex], x: i64, y: i64) -> bool {
+    // Each edge (a, b), the closing one first: the parity does not depend on the
+    // order, and neither does the answer on an edge.
+    let Some(mut a) = poly.last() else {
+        return false;
+    };
+    let mut inside = false;
+    for b in poly {
+        let (ay, by) = (2 * i64::from(a.y), 2 * i64::from(b.y));
+        if (ay <= y) != (by <= y) {
+            let (ax, bx) = (2 * i64::from(a.x), 2 * i64::from(b.x));
+            // Orientation of the point against the edge, taken upward.
+            let (lx, ly, hx, hy) = if ay < by {
+                (ax, ay, bx, by)
+            } else {
+                (bx, by, ax, ay)
+            };
+            // Inside the guard band every difference is below 2^28 half-units:
+            // 32-bit factors with a 64-bit product (one multiply on a Cortex-M4).
+            let wide = |a: i64, b: i64| i64::from(a as i32) * i64::from(b as i32);
+            let cross = wide(hx - lx, y - ly) - wide(hy - ly, x - lx);
+            if cross == 0 {
+                return true;
+            }
+            if cross > 0 {
+                inside = !inside;
+            }
+        }
+        a = b;
+    }
+    inside
 }
 
 #[cfg(test)]
