@@ -264,3 +264,12 @@ impl<T: fmt::Debug> fmt::Display for Error<T> {
         }
     }
 }
+
+/// `CapacityExceeded` when `needed` is more than `capacity`: the one check every
+/// fixed-size buffer makes.
+pub(crate) fn need(needed: usize, capacity: usize) -> Result<(), Error> {
+    if needed > capacity {
+        return Err(Error::CapacityExceeded { needed, capacity });
+    }
+    Ok(())
+}

@@ -2,7 +2,7 @@
 
 use core::ops::Range;
 
-use super::build::need;
+use crate::error::need;
 use crate::mesh::{Mesh, Viewpoint};
 use crate::vector::dot;
 use crate::Error;

@@ -13,6 +13,7 @@
 
 mod bsp;
 mod build;
+mod depth_order;
 mod newell;
 mod plane;
 mod seams;
@@ -22,6 +23,7 @@ mod tests;
 pub use bsp::{
     work_bound, BspNode, BspOptions, BspSizes, BspStorage, BspTree, NO_NODE, PLANE_TOLERANCE,
 };
+pub use depth_order::DepthOrder;
 pub use newell::{NewellOptions, NewellOrder, NewellSizes, NewellStorage};
 pub(crate) use plane::is_planar;
 pub use plane::planar_faces;

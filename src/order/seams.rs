@@ -12,8 +12,8 @@
 //! strictly between its ends; both sides of an edge then have the same vertex
 //! sequence.
 
-use super::build::need;
 use super::plane::vertex;
+use crate::error::need;
 use crate::sort::sort_by_key;
 use crate::Error;
 

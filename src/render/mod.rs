@@ -55,6 +55,8 @@ pub use zbuffer::ZBufferRenderer;
 
 use crate::camera::Camera;
 use crate::mesh::{bit, set_bit, EdgeAdjacency, Mesh, Viewpoint};
+// The engines check their buffers with it as `super::need`.
+pub(crate) use crate::error::need;
 use crate::{Error, Pattern, Viewport};
 use band::IdBand;
 use transform::FixedView;
@@ -215,13 +217,6 @@ pub struct Stats {
     pub depth_step_near: f32,
     /// The same at the farthest drawn distance (larger under perspective).
     pub depth_step_far: f32,
-}
-
-fn need(needed: usize, capacity: usize) -> Result<(), Error> {
-    if needed > capacity {
-        return Err(Error::CapacityExceeded { needed, capacity });
-    }
-    Ok(())
 }
 
 /// One frame's fixed inputs, shared by the band passes.

@@ -65,10 +65,3 @@ pub(super) fn run<'s>(
     let depth = build.depth;
     out.finish(depth, pieces, build.peak, build.work)
 }
-
-pub(super) fn need(needed: usize, capacity: usize) -> Result<(), Error> {
-    if needed > capacity {
-        return Err(Error::CapacityExceeded { needed, capacity });
-    }
-    Ok(())
-}

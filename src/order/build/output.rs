@@ -1,6 +1,6 @@
 //! The output of the build: the fragments' slices, the nodes, the split points.
 
-use super::need;
+use crate::error::need;
 use crate::mesh::{Mesh, MAX_FACES};
 use crate::order::bsp::{BspNode, BspTree, NO_NODE};
 use crate::order::plane::Plane;

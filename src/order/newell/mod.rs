@@ -62,7 +62,7 @@ mod view;
 
 use crate::camera::Camera;
 use crate::mesh::Mesh;
-use crate::render::DepthOrder;
+use crate::order::DepthOrder;
 use crate::Error;
 
 /// Storage the caller lends [`NewellOrder::sort`]; all slices, sizes checked.

@@ -7,9 +7,9 @@
 use super::view::View;
 use super::{NewellOptions, NewellOrder, NewellStorage};
 use crate::camera::Camera;
+use crate::error::need;
 use crate::mesh::{Mesh, MAX_FACES};
 use crate::order::bsp::PLANE_TOLERANCE;
-use crate::order::build::need;
 use crate::order::plane::{fan_triangles, fans, vertex, Plane, Record};
 use crate::order::seams::{insert_seam_vertices, Seams};
 use crate::sort::sort_by_key;

@@ -5,7 +5,9 @@
 
 use core::fmt;
 
-use super::holes::{label_holes, MAX_HOLES, NO_HOLE};
+use super::edge::{CompactEdge, MAX_HOLES, NO_HOLE};
+use super::holes::label_holes;
+use crate::error::need;
 use crate::mesh::{EdgeAdjacency, EdgeKind, Mesh};
 use crate::{EdgeProblem, Error};
 
@@ -23,43 +25,6 @@ pub struct FacePlane {
     pub normal: [f32; 3],
     /// Mean of the face's corners.
     pub centroid: [f32; 3],
-}
-
-/// One edge of the compact edge list: 10 bytes instead of [`MeshEdge`]'s 24.
-///
-/// [`MeshEdge`]: crate::mesh::MeshEdge
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct CompactEdge {
-    /// Lower vertex index.
-    pub a: u16,
-    /// Higher vertex index.
-    pub b: u16,
-    /// The two lowest-numbered faces using it (equal for a boundary edge).
-    pub faces: [u16; 2],
-    /// What the edge is.
-    pub kind: EdgeKind,
-    /// A boundary edge's hole (its loop, below [`MAX_HOLES`]) when the host found
-    /// the mesh with its holes capped nowhere inside-out, so that back faces away
-    /// from the holes can be skipped; else [`NO_HOLE`].
-    pub hole: u8,
-}
-
-impl CompactEdge {
-    /// A placeholder for lent buffers.
-    pub const EMPTY: Self = Self {
-        a: 0,
-        b: 0,
-        faces: [0; 2],
-        kind: EdgeKind::Inert,
-        hole: NO_HOLE,
-    };
-}
-
-impl Default for CompactEdge {
-    fn default() -> Self {
-        Self::EMPTY
-    }
 }
 
 /// A mesh with its per-mesh constants, checked once: what the fast engine draws.
@@ -195,13 +160,6 @@ impl<'a> BakedMesh<'a> {
     pub fn is_closed(&self) -> bool {
         self.closed
     }
-}
-
-fn need(needed: usize, capacity: usize) -> Result<(), Error> {
-    if needed > capacity {
-        return Err(Error::CapacityExceeded { needed, capacity });
-    }
-    Ok(())
 }
 
 fn check_counts(mesh: &Mesh<'_>) -> Result<(), Error> {

@@ -10,7 +10,8 @@
 //! nothing. `step` is the Euclidean length of one pixel of the major axis,
 //! `sqrt(1 + slope^2)` px, in turns.
 
-use super::baked::{BakedMesh, CompactEdge};
+use super::baked::BakedMesh;
+use super::edge::CompactEdge;
 use super::view::{FastVertex, ScreenMap};
 use crate::render::{Dashes, Settings};
 

@@ -25,17 +25,10 @@
 //! edge with its loop; a mesh that fails, or has more than [`MAX_HOLES`] loops or
 //! more than [`MAX_CHECKED_FACES`] faces, gets no labels and draws every back face.
 
-use super::baked::CompactEdge;
+use super::edge::{CompactEdge, MAX_HOLES, NO_HOLE};
 use super::view::FastVertex;
 use crate::mesh::{EdgeKind, Mesh};
 use crate::vector::{cross, sub};
-
-/// The most holes (boundary loops) a mesh may have for back faces to be skipped.
-pub const MAX_HOLES: usize = 16;
-
-/// The label of an edge that bounds no hole (and of every edge of a mesh whose
-/// back faces are all drawn).
-pub const NO_HOLE: u8 = 0xFF;
 
 /// The most faces whose capped surface `bake` checks (the check costs faces
 /// times triangles): a larger mesh draws every back face.

@@ -55,6 +55,7 @@ mod baked;
 mod clip;
 mod dash;
 mod depth_row;
+mod edge;
 mod facets;
 mod holes;
 mod lines;
@@ -70,14 +71,16 @@ use core::mem::size_of;
 use fixed::types::extra::LeEqU32;
 use heapless::Vec;
 
-pub use baked::{BakedMesh, BakedSource, CompactEdge, FacePlane, MAX_FAST_FACES};
+pub use baked::{BakedMesh, BakedSource, FacePlane, MAX_FAST_FACES};
+pub use edge::{CompactEdge, MAX_HOLES, NO_HOLE};
 pub use facets::MAX_CORNERS;
-pub use holes::{MAX_CHECKED_FACES, MAX_HOLES, NO_HOLE};
+pub use holes::MAX_CHECKED_FACES;
 pub use view::FastVertex;
 
 use super::compose::{FrameProbe, Palette};
 use super::{Cull, Settings, Stats};
 use crate::camera::{dot, Camera};
+use crate::error::need;
 use crate::mesh::{bit, set_bit, EdgeKind, Viewpoint};
 use crate::{Error, SpanSink, Viewport};
 use active::ActiveFacets;
@@ -193,13 +196,6 @@ impl CornerSource for Source<'_, '_> {
         }
         .unwrap_or_default()
     }
-}
-
-fn need(needed: usize, capacity: usize) -> Result<(), Error> {
-    if needed > capacity {
-        return Err(Error::CapacityExceeded { needed, capacity });
-    }
-    Ok(())
 }
 
 /// Does the face with `plane` face `view`? The test of `Mesh::faces_viewpoint`,
