@@ -35,6 +35,7 @@
     unused_qualifications
 )]
 
+mod bits;
 pub mod camera;
 pub mod codefill;
 pub mod codes;

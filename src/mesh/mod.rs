@@ -15,6 +15,7 @@ mod tests;
 pub use adjacency::{EdgeAdjacency, HalfEdgeRecord};
 pub use features::{face_owns_edge, EdgeKind, MeshEdge};
 
+use crate::bits::bit;
 use crate::Error;
 
 /// Most faces a mesh may have: face ids are 16-bit in the renderer's id buffers.
@@ -253,23 +254,6 @@ impl<'a> Mesh<'a> {
 pub(crate) fn weld_bits(p: &[f32; 3]) -> [u32; 3] {
     // Adding +0.0 turns -0.0 into +0.0 and leaves every other value alone.
     p.map(|c| (c + 0.0).to_bits())
-}
-
-/// Bit `i` of a bitset of words (bit `i % 32` of word `i / 32`): a face's or an
-/// edge's flag; false beyond the words.
-pub(crate) fn bit(bits: &[u32], i: usize) -> bool {
-    bits.get(i / 32).is_some_and(|w| w & (1 << (i % 32)) != 0)
-}
-
-/// Sets bit `i` of a bitset to `on` (nothing beyond the words).
-pub(crate) fn set_bit(bits: &mut [u32], i: usize, on: bool) {
-    if let Some(w) = bits.get_mut(i / 32) {
-        if on {
-            *w |= 1 << (i % 32);
-        } else {
-            *w &= !(1 << (i % 32));
-        }
-    }
 }
 
 /// Words of face bits a mesh of `faces` faces needs for

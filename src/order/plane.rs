@@ -1,6 +1,7 @@
 //! Planes, vertex classification and the work-stack records of the BSP build (f64).
 
-use crate::mesh::{planar_words, set_bit, Mesh};
+use crate::bits::set_bit;
+use crate::mesh::{planar_words, Mesh};
 use crate::vector::{add, cross, dot, sub};
 use crate::Error;
 

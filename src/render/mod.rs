@@ -53,8 +53,9 @@ pub use warnock::{WarnockArea, WarnockFace, WarnockRenderer, WarnockSizes, Warno
 pub use zband::Depth;
 pub use zbuffer::ZBufferRenderer;
 
+use crate::bits::{bit, set_bit};
 use crate::camera::Camera;
-use crate::mesh::{bit, set_bit, EdgeAdjacency, Mesh, Viewpoint};
+use crate::mesh::{EdgeAdjacency, Mesh, Viewpoint};
 // The engines check their buffers with it as `super::need`.
 pub(crate) use crate::error::need;
 use crate::{Error, Pattern, Viewport};

@@ -79,9 +79,10 @@ pub use view::FastVertex;
 
 use super::compose::{FrameProbe, Palette};
 use super::{Cull, Settings, Stats};
+use crate::bits::{bit, set_bit};
 use crate::camera::{dot, Camera};
 use crate::error::need;
-use crate::mesh::{bit, set_bit, EdgeKind, Viewpoint};
+use crate::mesh::{EdgeKind, Viewpoint};
 use crate::{Error, SpanSink, Viewport};
 use active::ActiveFacets;
 use clip::{clip_polygon, clip_segment};
