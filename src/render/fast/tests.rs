@@ -12,7 +12,7 @@ use fixed::types::extra::{U4, U7};
 use super::*;
 use crate::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
 use crate::render::{DrawMode, SolidPalette};
-use crate::{Dashes, FillSolid, Pattern, Projection};
+use crate::{packed_len, Dashes, FillSolid, PackedFramebuffer, Pattern, Projection};
 
 /// A unit square in the z = 0 plane as two triangles sharing the diagonal 0-2.
 const SQUARE: [[f32; 3]; 4] = [[-1., -1., 0.], [1., -1., 0.], [1., 1., 0.], [-1., 1., 0.]];
@@ -104,19 +104,29 @@ fn settings(mode: DrawMode) -> Settings {
     }
 }
 
-#[test]
-fn two_triangles_fill_their_square_once_with_no_gap_on_the_diagonal() {
+/// Draws the two-triangle square filled into `sink` (`width` x 64), seen
+/// orthographically from (`eye_x`, 0, 4) at 16 px a unit: both faces drawn.
+fn draw_square<K: SpanSink<Color = BinaryColor>>(sink: &mut K, width: usize, eye_x: f32)
+where
+    K::Error: core::fmt::Debug,
+{
     let mesh = Mesh::new(&SQUARE, &TRIS, &OFFSETS).unwrap();
     let b = bake(&mesh);
     let baked = BakedMesh::new(mesh, &b.planes, &b.edges).unwrap();
-    let mut buffers = Buffers::new(4, 2, b.edges.len(), 64, 64);
-    // MockDisplay panics on a pixel drawn twice: each pixel is one span's.
-    let mut display = MockDisplay::<BinaryColor>::new();
+    let mut buffers = Buffers::new(4, 2, b.edges.len(), width, 64);
     let palette = SolidPalette {
         line: BinaryColor::On,
         face: Some(BinaryColor::On),
     };
-    let camera = looking_down_z(2.0);
+    let camera = Camera::new(
+        [eye_x, 0., 4.],
+        [eye_x, 0., 0.],
+        [0., 1., 0.],
+        Projection::Orthographic { half_height: 2.0 },
+        0.1,
+        10.0,
+    )
+    .unwrap();
     let stats = FastRenderer::<U4, 8, 8>::new()
         .render(
             &baked,
@@ -124,19 +134,43 @@ fn two_triangles_fill_their_square_once_with_no_gap_on_the_diagonal() {
             &settings(DrawMode::Surfaces),
             &mut buffers.workspace(),
             &palette,
-            &mut FillSolid::new(&mut display).unwrap(),
+            sink,
             &mut (),
         )
         .unwrap();
     assert_eq!(stats.faces_drawn, 2);
-    // 16 px a unit: the square covers exactly the centres in [16, 48) x [16, 48).
+}
+
+/// Exactly the pixels in `columns` x [16, 48) of a `width` x 64 frame are `lit`.
+fn lit_exactly(width: i32, columns: core::ops::Range<i32>, lit: impl Fn(i32, i32) -> bool) {
     for y in 0..64 {
-        for x in 0..64 {
-            let inside = (16..48).contains(&x) && (16..48).contains(&y);
-            let on = display.get_pixel(embedded_graphics::prelude::Point::new(x, y));
-            assert_eq!(on.is_some(), inside, "pixel ({x}, {y})");
+        for x in 0..width {
+            let inside = columns.contains(&x) && (16..48).contains(&y);
+            assert_eq!(lit(x, y), inside, "pixel ({x}, {y})");
         }
     }
+}
+
+#[test]
+fn two_triangles_fill_their_square_once_with_no_gap_on_the_diagonal() {
+    // MockDisplay panics on a pixel drawn twice: each pixel is one span's.
+    let mut display = MockDisplay::<BinaryColor>::new();
+    draw_square(&mut FillSolid::new(&mut display).unwrap(), 64, 0.0);
+    // 16 px a unit: the square covers exactly the centres in [16, 48) x [16, 48).
+    lit_exactly(64, 16..48, |x, y| {
+        let p = embedded_graphics::prelude::Point::new(x, y);
+        display.get_pixel(p).is_some()
+    });
+}
+
+/// The surface modes scan a row's words for runs only within the columns the
+/// frame's faces can reach: a square in the third and fourth words of a 128-pixel
+/// row (columns 80 to 111) comes out whole, and the words before it empty.
+#[test]
+fn a_square_right_of_the_first_words_is_filled_whole() {
+    let mut frame = PackedFramebuffer::<128, 64, { packed_len(128, 64) }>::new();
+    draw_square(&mut frame, 128, -2.0);
+    lit_exactly(128, 80..112, |x, y| frame.pixel(x as u32, y as u32));
 }
 
 #[test]
@@ -166,7 +200,7 @@ fn too_little_lent_storage_or_room_is_an_error_with_the_size_needed() {
     let mesh = Mesh::new(&SQUARE, &TRIS, &OFFSETS).unwrap();
     let b = bake(&mesh);
     let baked = BakedMesh::new(mesh, &b.planes, &b.edges).unwrap();
-    let mut fb = crate::PackedFramebuffer::<16, 16, { crate::packed_len(16, 16) }>::new();
+    let mut fb = PackedFramebuffer::<16, 16, { packed_len(16, 16) }>::new();
     let palette = SolidPalette {
         line: BinaryColor::On,
         face: Some(BinaryColor::On),
@@ -438,7 +472,7 @@ fn surfaces_written_a_word_at_a_time_are_the_pixels_asked_one_by_one() {
         line: BinaryColor::On,
         face: Some(BinaryColor::On),
     };
-    type Fb = crate::PackedFramebuffer<70, 64, { crate::packed_len(70, 64) }>;
+    type Fb = PackedFramebuffer<70, 64, { packed_len(70, 64) }>;
     let on = |fb: &Fb| {
         (0..64)
             .flat_map(|y| (0..70).map(move |x| (x, y)))
