@@ -274,11 +274,7 @@ impl RowPlane {
     /// the Z-buffer's `FaceSpans` gives the pixel (no wrap, as in [`at`](Self::at)).
     #[inline]
     pub fn at_xy(&self, x: u16, y: u16) -> u32 {
-        let q = self
-            .row_q
-            .wrapping_add(self.dq_dy.wrapping_mul(i64::from(y)))
-            .wrapping_add(self.dq_dx.wrapping_mul(i64::from(x)));
-        self.sample(q)
+        self.sample(self.start_and_step(x, y).0)
     }
 
     /// The largest nearness the plane takes anywhere (its vertices' largest).

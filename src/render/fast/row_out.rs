@@ -44,8 +44,8 @@ const KEPT_SHADES: usize = 32;
 /// The shading of a face (|cos| between its normal and the eye direction, 0..255),
 /// with the last shades asked kept (a square root each made, so kept).
 pub(super) struct Shades<'a> {
-    pub planes: &'a [FacePlane],
-    pub viewpoint: Viewpoint,
+    planes: &'a [FacePlane],
+    viewpoint: Viewpoint,
     kept: [(u16, u8); KEPT_SHADES],
 }
 
