@@ -177,6 +177,32 @@ impl Camera {
         })
     }
 
+    /// A perspective camera at `eye` looking at `target` with a vertical field of
+    /// view of `fov_y_deg` degrees: `+y` is up on the screen, the near plane at a
+    /// hundredth of the eye's distance to the target and the far plane at a
+    /// hundred times it. The errors of [`new`](Self::new); looking straight up or
+    /// down is `UpParallelToView` (use [`new`](Self::new) with another `up`).
+    pub fn look_at(eye: [f32; 3], target: [f32; 3], fov_y_deg: f32) -> Result<Self, Error> {
+        let view = sub(target, eye);
+        // |view| scaled by its largest component, so that no square overflows.
+        let m = view.iter().fold(0.0f32, |m, c| m.max(c.abs()));
+        // Eye at target: any distance lets `new` name the first problem.
+        let distance = if m > 0.0 && m.is_finite() {
+            m * sqrt(dot(view.map(|c| c / m), view.map(|c| c / m)))
+        } else {
+            1.0
+        };
+        let projection = Projection::Perspective { fov_y_deg };
+        Self::new(
+            eye,
+            target,
+            [0.0, 1.0, 0.0],
+            projection,
+            distance / 100.0,
+            distance * 100.0,
+        )
+    }
+
     /// The eye position.
     pub fn eye(&self) -> [f32; 3] {
         self.eye
@@ -229,6 +255,32 @@ impl Camera {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn look_at_is_new_with_y_up_and_planes_a_hundredth_and_a_hundred_times_away() {
+        let eye = [3.0, 4.0, 12.0]; // 13 from the origin
+        let short = Camera::look_at(eye, [0.0; 3], 40.0).unwrap();
+        let fov = Projection::Perspective { fov_y_deg: 40.0 };
+        let long = Camera::new(eye, [0.0; 3], [0.0, 1.0, 0.0], fov, 0.13, 1300.0).unwrap();
+        assert_eq!(short, long);
+    }
+
+    #[test]
+    fn look_at_names_the_problem() {
+        let bad = |p| Err(Error::BadCamera(p));
+        assert_eq!(
+            Camera::look_at([1.0; 3], [1.0; 3], 40.0),
+            bad(CameraProblem::EyeAtTarget)
+        );
+        let up = Camera::look_at([0.0, 5.0, 0.0], [0.0; 3], 40.0);
+        assert_eq!(up, bad(CameraProblem::UpParallelToView));
+        let nan = Camera::look_at([f32::NAN, 0.0, 1.0], [0.0; 3], 40.0);
+        assert_eq!(nan, bad(CameraProblem::NonFinite));
+        let fov = Camera::look_at([0.0, 0.0, 1.0], [0.0; 3], 180.0);
+        assert_eq!(fov, bad(CameraProblem::FovOutOfRange));
+        // 1e30 apart: no square overflows, but the far plane (1e32) still fits.
+        assert!(Camera::look_at([0.0, 0.0, 1e30], [0.0; 3], 40.0).is_ok());
+    }
 
     #[test]
     fn tan_is_accurate_to_f32() {

@@ -113,6 +113,8 @@ pub enum Error<T = Infallible> {
         /// The first face whose plane does not fit (the plane count when short).
         face: usize,
     },
+    /// A [`Drawing`](crate::Drawing) was asked to draw before a mesh was baked.
+    NothingBaked,
     /// Too many sub-pixel bits for an engine whose screen coordinates are 16 bits.
     SubpixelTooFine {
         /// Sub-pixel bits compiled in.
@@ -193,6 +195,7 @@ impl Error<Infallible> {
             Error::Scheme(v) => Error::Scheme(v),
             Error::SubpixelTooCoarse { bits, needed } => Error::SubpixelTooCoarse { bits, needed },
             Error::BadFacePlanes { face } => Error::BadFacePlanes { face },
+            Error::NothingBaked => Error::NothingBaked,
             Error::SubpixelTooFine { bits, max } => Error::SubpixelTooFine { bits, max },
             Error::Target(never) => match never {},
         }
@@ -256,6 +259,7 @@ impl<T: fmt::Debug> fmt::Display for Error<T> {
             Error::BadFacePlanes { face } => {
                 write!(f, "baked face planes do not fit the mesh at face {face}")
             }
+            Error::NothingBaked => f.write_str("nothing baked to draw: call Drawing::bake first"),
             Error::SubpixelTooFine { bits, max } => write!(
                 f,
                 "{bits} sub-pixel bits are too many for this engine, at most {max}"

@@ -1,14 +1,51 @@
 //! # pbuffer
 //!
-//! A `#![no_std]`, allocation-free, fixed-point span rasterizer for embedded
-//! displays: screen-space polygons become horizontal spans, decided exactly by the
-//! pixel-centre, top-left rule of the project's conventions, and drawn through any
-//! embedded-graphics [`DrawTarget`](embedded_graphics_core::draw_target::DrawTarget).
+//! A `#![no_std]`, allocation-free, fixed-point hidden-line and hidden-surface
+//! renderer for embedded displays: a mesh and a camera go in, a line drawing with
+//! dashed hidden lines (or filled surfaces) comes out as horizontal spans drawn
+//! into any embedded-graphics
+//! [`DrawTarget`](embedded_graphics_core::draw_target::DrawTarget).
 //!
-//! The flow is one way: [`ScreenPoint`]s (fixed point, S sub-pixel bits) ->
+//! A cube with dashed hidden lines:
+//!
+//! ```
+//! use embedded_graphics::{mock_display::MockDisplay, pixelcolor::BinaryColor};
+//! use pbuffer::prelude::*;
+//!
+//! const CORNERS: [[f32; 3]; 8] = [[-1., -1., -1.], [1., -1., -1.], [1., 1., -1.], [-1., 1., -1.],
+//!     [-1., -1., 1.], [1., -1., 1.], [1., 1., 1.], [-1., 1., 1.]];
+//! const QUADS: [u32; 24] = [0, 3, 2, 1, 4, 5, 6, 7, 0, 1, 5, 4, 2, 3, 7, 6, 1, 2, 6, 5, 0, 4, 7, 3];
+//! let mesh = Mesh::new(&CORNERS, &QUADS, &[0, 4, 8, 12, 16, 20, 24])?;
+//! let mut cube = Drawing::<8, 6, 12>::new(); // vertices, faces, edges
+//! cube.bake(mesh)?;
+//! let camera = Camera::look_at([3.0, 2.5, 4.0], [0.0; 3], 40.0)?;
+//! let mut display = MockDisplay::<BinaryColor>::new(); // 64 x 64; fails on overdraw
+//! let stats = cube.draw(&camera, &mut FrameRows::<64, 64>::new(), &mut display)?;
+//! assert_eq!((stats.faces_drawn, stats.feature_edges), (3, 12)); // 9 edges seen, 3 dashed
+//! # Ok::<(), pbuffer::Error>(())
+//! ```
+//!
+//! The flow is one way, one stage a module:
+//! 1. [`mesh`]: a validated [`Mesh`] (vertices, polygon faces), its edges
+//!    ([`EdgeAdjacency`]) and their kinds: the feature edges a view draws.
+//! 2. [`camera`]: [`Camera`], the eye, projection and near and far planes.
+//! 3. Projection and clipping (`render`'s transform): vertices to fixed-point
+//!    screen positions with S sub-pixel bits ([`subpixel`]), faces clipped at the
+//!    near plane.
+//! 4. Visibility, by one of the engines of [`render`] (the fast engine by default;
+//!    the Z-buffer, the modulo-2 code-fill buffer, painter, BSP, Newell, Warnock,
+//!    ray casting, coding schemes), with the depth orders of [`order`] and the
+//!    codes of [`codes`].
+//! 5. Lines: each feature edge's pixels, visible solid and hidden through the
+//!    P-buffer [`Pattern`].
+//! 6. Composition: palettes ([`render::MonoPalette`], grey levels) give each run its
+//!    colour.
+//! 7. Spans: half-open `(y, x0..x1)` runs of one colour into a [`SpanSink`]:
+//!    [`FillSolid`], [`ContiguousRows`] or the packed 1-bpp [`PackedFramebuffer`].
+//!
+//! Under the 3-D flow is the exact 2-D span core: [`ScreenPoint`]s ->
 //! [`ScanConverter`] (edge table, active edges, sorted crossings) or [`XorFiller`]
-//! (modulo-2 code row) -> [`Span`]s -> a [`SpanSink`]: [`FillSolid`],
-//! [`ContiguousRows`] or the packed 1-bpp [`PackedFramebuffer`].
+//! (modulo-2 code row) -> [`Span`]s, decided by the pixel-centre, top-left rule.
 //!
 //! No input panics: bad input is an [`Error`]. Nothing is allocated: capacities are
 //! const generics.
@@ -39,6 +76,7 @@ mod bits;
 pub mod camera;
 pub mod codefill;
 pub mod codes;
+mod drawing;
 mod error;
 mod framebuffer;
 mod geometry;
@@ -55,6 +93,7 @@ mod vector;
 pub use camera::{Camera, Projection};
 pub use codefill::XorFiller;
 pub use codes::SchemeViolation;
+pub use drawing::{Drawing, FrameRows, CLIPPED_CORNERS, CREASE_DEG};
 pub use error::{CameraProblem, EdgeProblem, Error};
 pub use framebuffer::{packed_len, write_mask, PackedFramebuffer};
 pub use geometry::{ScreenPoint, Viewport, GUARD_BAND_PX, MAX_SUBPIXEL_BITS, MAX_VIEWPORT};
@@ -70,3 +109,16 @@ pub use render::{
 };
 pub use scan::{FillRule, ScanConverter};
 pub use span::{ContiguousRows, FillSolid, Span, SpanSink, ROW_SEGMENTS};
+
+/// The sub-pixel precisions S (fractional bits of screen coordinates) the engines
+/// take as a type parameter, re-exported from `fixed` so that a user need not
+/// depend on it: `U4` is 1/16 pixel, the default of [`Drawing`] and of the
+/// aliases in [`render`].
+pub mod subpixel {
+    pub use fixed::types::extra::{LeEqU32, U0, U1, U2, U3, U4, U5, U6, U7, U8};
+}
+
+/// The names one frame needs: `use pbuffer::prelude::*;`.
+pub mod prelude {
+    pub use crate::{Camera, DrawMode, Drawing, Error, FrameRows, Mesh, Settings};
+}

@@ -1,8 +1,9 @@
 //! Firmware smoke test for pbuffer on a Cortex-M4 (QEMU `mps2-an386`, run by
-//! scripts/thumb-check): fills two polygons into a 128x64 packed framebuffer, then renders
-//! a cube with dashed hidden lines (`cube.rs`, 8-row bands), prints the FNV-1a 64 hash of
-//! each frame and the instructions each step took, and exits 0 only when both hashes are
-//! the ones the host computes for the same scenes (`EXPECTED`, `cube::EXPECTED_CUBE`).
+//! scripts/thumb-check): fills two polygons into a 128x64 packed framebuffer, then
+//! renders a cube with dashed hidden lines (`cube.rs`, the short API's doctest lines),
+//! prints the FNV-1a 64 hash of each frame and the instructions each step took, and
+//! exits 0 only when both hashes are the ones the host computes for the same scenes
+//! (`EXPECTED`, `cube::EXPECTED_CUBE`).
 //! A panic or an error exits non-zero (panic-semihosting's `exit` feature).
 #![no_std]
 #![no_main]
@@ -13,8 +14,8 @@ use cortex_m::peripheral::{syst::SystClkSource, SYST};
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 use embedded_graphics::pixelcolor::BinaryColor;
-use fixed::types::extra::U4;
 use panic_semihosting as _;
+use pbuffer::subpixel::U4;
 use pbuffer::{packed_len, FillRule, PackedFramebuffer, ScanConverter, ScreenPoint};
 
 mod cube;
@@ -77,13 +78,13 @@ fn scene(syst: &mut SYST, fb: &mut Fb) -> Result<(), pbuffer::Error<Infallible>>
 /// Renders the cube and checks its hash against the host's.
 fn cube_scene(syst: &mut SYST) -> debug::ExitStatus {
     let mut fb = cube::CubeFrame::new();
-    let (r, n) = count(syst, || cube::render_cube(&mut fb, [3.0, 2.5, 4.0]));
+    let (r, n) = count(syst, || cube::render_cube(&mut fb));
     match r {
         Ok(stats) => {
             let hash = fnv1a64(fb.as_bytes());
             hprintln!(
-                "pbuffer-firmware: cube dashed 128x64, {} bands of 8 rows, {} feature edges: {} instructions, fnv1a64={:016x}",
-                stats.bands,
+                "pbuffer-firmware: cube dashed 128x64 (short API: bake and draw), {} faces drawn, {} feature edges: {} instructions, fnv1a64={:016x}",
+                stats.faces_drawn,
                 stats.feature_edges,
                 n,
                 hash

@@ -141,6 +141,24 @@ impl<'a> BakedMesh<'a> {
         })
     }
 
+    /// The constants [`bake`](Self::bake) wrote here, unchecked: for a caller that
+    /// keeps them beside the mesh it baked ([`Drawing`](crate::Drawing)).
+    pub(crate) fn baked_here(
+        mesh: Mesh<'a>,
+        planes: &'a [FacePlane],
+        edges: &'a [CompactEdge],
+    ) -> Self {
+        let closed = edges
+            .iter()
+            .all(|e| e.kind != EdgeKind::Boundary && e.kind != EdgeKind::NonManifold);
+        Self {
+            mesh,
+            planes,
+            edges,
+            closed,
+        }
+    }
+
     /// The mesh.
     pub fn mesh(&self) -> &Mesh<'a> {
         &self.mesh
