@@ -118,6 +118,14 @@ pub mod subpixel {
     pub use fixed::types::extra::{LeEqU32, U0, U1, U2, U3, U4, U5, U6, U7, U8};
 }
 
+/// What a frame means, exactly: pixel centres, the fill rule, the camera, feature
+/// edges, hidden points, exact and approximate engines, and the `render` command's
+/// outputs. Every engine and the f64 reference obey it; the module docs cite its
+/// sections. (`docs/CONVENTIONS.md`, the project's shared conventions as of this
+/// release; CI checks the copy against the shared original.)
+#[doc = include_str!("../docs/CONVENTIONS.md")]
+pub mod conventions {}
+
 /// The names one frame needs: `use pbuffer::prelude::*;`.
 pub mod prelude {
     pub use crate::{Camera, DrawMode, Drawing, Error, FrameRows, Mesh, Settings};
