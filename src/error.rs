@@ -96,7 +96,7 @@ pub enum Error<T = Infallible> {
         /// Bits compiled in.
         capacity: usize,
     },
-    /// Surface codes break a condition of their coding scheme (paper 003).
+    /// Surface codes break a condition of their coding scheme (the modulo-2 surface-filling paper).
     Scheme(crate::codes::SchemeViolation),
     /// Too few sub-pixel bits for a pixel's sub-samples to lie on the fixed-point grid
     /// (the grey coverage mode samples a 4 x 4 grid at eighths of a pixel).

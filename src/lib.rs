@@ -48,7 +48,20 @@
 //! (modulo-2 code row) -> [`Span`]s, decided by the pixel-centre, top-left rule.
 //!
 //! No input panics: bad input is an [`Error`]. Nothing is allocated: capacities are
-//! const generics.
+//! const generics. What a frame means, pixel by pixel, is in [`conventions`].
+//!
+//! ## The papers
+//! - Xiaobu Yuan and Hanqiu Sun, *P-Buffer: Hidden-line rendering with a dynamic
+//!   p-buffer*, Computers & Graphics 24(3), 359-366, 2000: the pattern buffer that
+//!   dashes hidden lines ([`Pattern`]).
+//! - A paper on hidden-surface removal with *a new linear surface-filling algorithm*
+//!   (our copy has lost its title page; cited here as "the modulo-2 surface-filling
+//!   paper"): surface codes XORed into a scan line, and three coding schemes
+//!   ([`codes`], the code-fill engine, [`XorFiller`]).
+//! - Michael Laszlo, *Computer Graphics: Hidden Surface Removal*, lecture notes, 2002,
+//!   and Mousumi Dutt, *Visible Surface Detection*, lecture notes: the Z-buffer,
+//!   Newell-Newell-Sancha depth sort, Warnock subdivision, BSP trees, the scan-line
+//!   method, ray casting ([`order`] and the engines of [`render`]).
 #![no_std]
 #![forbid(unsafe_code)]
 #![deny(missing_docs, missing_debug_implementations)]

@@ -1,4 +1,4 @@
-//! The surface-coding schemes of paper 003 (modulo-2 surface fill), with their
+//! The surface-coding schemes of the modulo-2 surface-filling paper, with their
 //! conditions checked when a scheme is set up.
 //!
 //! The filler XORs a surface's code into a row at each of its edge crossings, so a
