@@ -56,8 +56,8 @@
 //!   dashes hidden lines ([`Pattern`]).
 //! - A paper on hidden-surface removal with *a new linear surface-filling algorithm*
 //!   (our copy has lost its title page; cited here as "the modulo-2 surface-filling
-//!   paper"): surface codes XORed into a scan line, and three coding schemes
-//!   ([`codes`], the code-fill engine, [`XorFiller`]).
+//!   paper"): surface codes combined by XOR into a scan line, and three coding
+//!   schemes ([`codes`], the code-fill engine, [`XorFiller`]).
 //! - Michael Laszlo, *Computer Graphics: Hidden Surface Removal*, lecture notes, 2002,
 //!   and Mousumi Dutt, *Visible Surface Detection*, lecture notes: the Z-buffer,
 //!   Newell-Newell-Sancha depth sort, Warnock subdivision, BSP trees, the scan-line
@@ -137,6 +137,8 @@ pub mod subpixel {
 /// sections. (`docs/CONVENTIONS.md`, the project's shared conventions as of this
 /// release; CI checks the copy against the shared original.)
 #[doc = include_str!("../docs/CONVENTIONS.md")]
+// The shared text, kept verbatim (CI compares it): its formulas are not code spans.
+#[allow(clippy::doc_markdown)]
 pub mod conventions {}
 
 /// The names one frame needs: `use pbuffer::prelude::*;`.
