@@ -30,7 +30,7 @@ pub const ACTIVE_EDGES: usize = 8192;
 /// collection is off while they run and the count is the library's own work.
 pub const EXCLUDED: [&str; 3] = [
     "*pipeline::Collect as*FrameProbe*row*",
-    "*render::fast::frame::probe_ids*",
+    "*render::engines::fast::frame::probe_ids*",
     "*pipeline::PackedFrame as*SpanSink*fill_span*",
 ];
 

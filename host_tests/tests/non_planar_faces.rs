@@ -22,9 +22,10 @@
 //!
 //! The scan-line method (`scanline`) compared one plane per face where faces
 //! overlap, wrong in the same way (the same 2,151 + 3,547). Where a face's plane
-//! leaves its fan triangles by more than a pixel's change of depth (`zfan::
-//! takes_fan_depth`, shared with the Z-buffer), it now asks the fan triangle that
-//! holds the pixel wherever the plane, off by that much, could pick another face.
+//! leaves its fan triangles by more than a pixel's change of depth
+//! (`render::depth::fan::takes_fan_depth`, shared with the Z-buffer), it now asks the
+//! fan triangle that holds the pixel wherever the plane, off by that much, could pick
+//! another face.
 //!
 //! Newell's depth sort (`newell`) took every face as one plane (with a thickness
 //! band about it): 789 + 3,126 on the twisted quads and 7 + 2 on suzanne's 32 views

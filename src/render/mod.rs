@@ -8,50 +8,40 @@
 //! for a fixed scene, decoded by a colour table). The line pass draws the feature
 //! edges that reach the band into a visible and a hidden mask (the P-buffer pattern
 //! decides hidden pixels), and composition turns each row into spans.
+//!
+//! The engines live in `render/engines/`, whose module doc tables every engine: its
+//! type, its `render --engine` name and when to choose it. Each has a short alias
+//! with S = 4 sub-pixel bits and only the capacities that grow with the mesh left to
+//! size: [`Fast`], [`ZBuffer`], [`CodeFill`], [`Painter`], [`Scheme`], [`Warnock`],
+//! [`Raycast`].
 
-mod abuffer;
-mod active;
 mod band;
-mod codefill;
 mod compose;
 mod depth;
-mod fast;
+mod engines;
 mod idpass;
 mod lines;
-mod painter;
 mod pick;
-mod raycast;
-mod scheme;
 mod transform;
 #[cfg(test)]
 mod two_squares;
-mod warnock;
-mod zband;
-mod zbuffer;
-mod zfan;
 
 use embedded_graphics_core::pixelcolor::BinaryColor;
 use heapless::Vec;
 
-pub use abuffer::{GreyPalette, GreyShades, SmallFace};
-pub use codefill::{CodeFillRenderer, CodeWorkspace, DepthOrder, RowCodes, Visibility};
 pub use compose::{FrameProbe, MonoPalette, Palette, SolidPalette};
-pub use fast::{
-    BakedMesh, BakedSource, CompactEdge, DashPhase, FacePlane, FastRenderer, FastVertex,
-    FastWorkspace, FAST_MAX_SUBPIXEL_BITS, MAX_CHECKED_FACES, MAX_CORNERS, MAX_FAST_FACES,
-    MAX_HOLES, NO_HOLE,
+pub use engines::{
+    BakedMesh, BakedSource, BvhNode, CodeFill, CodeFillRenderer, CodeWorkspace, CompactEdge,
+    DashPhase, Depth, DepthOrder, FacePlane, Fast, FastRenderer, FastVertex, FastWorkspace,
+    GreyPalette, GreyShades, OneSegment, PaintOrder, Painter, PainterRenderer, RayFace, Raycast,
+    RaycastFigures, RaycastRenderer, RaycastSizes, RaycastStorage, RowCodes, Scheme, SchemeCoding,
+    SchemeRenderer, ScreenSegments, SmallFace, Visibility, Warnock, WarnockArea, WarnockFace,
+    WarnockRenderer, WarnockSizes, WarnockStorage, ZBuffer, ZBufferRenderer,
+    FAST_MAX_SUBPIXEL_BITS, MAX_CHECKED_FACES, MAX_CORNERS, MAX_FAST_FACES, MAX_HOLES, NO_HOLE,
 };
 pub use idpass::IdWorkspace;
-pub use painter::{PaintOrder, PainterRenderer};
 pub use pick::{pick, Pick, PickWorkspace, PickedEdge};
-pub use raycast::{
-    BvhNode, RayFace, RaycastFigures, RaycastRenderer, RaycastSizes, RaycastStorage,
-};
-pub use scheme::{OneSegment, SchemeCoding, SchemeRenderer, ScreenSegments};
 pub use transform::{ClipVertex, ProjectedVertex, ScreenVertex};
-pub use warnock::{WarnockArea, WarnockFace, WarnockRenderer, WarnockSizes, WarnockStorage};
-pub use zband::Depth;
-pub use zbuffer::ZBufferRenderer;
 
 use crate::bits::{bit, set_bit};
 use crate::camera::Camera;

@@ -20,13 +20,13 @@
 use embedded_graphics_core::pixelcolor::{Gray8, GrayColor, PixelColor};
 use heapless::Vec;
 
-use super::compose::{self, shade, Compose, FrameProbe, SolidPalette};
-use super::lines::LineMasks;
-use super::transform::{ProjectedVertex, ScreenVertex};
-use super::{bit, face_polygon, DrawMode, FrameCtx, Settings};
 use crate::render::band::IdBand;
+use crate::render::compose::{self, shade, Compose, FrameProbe, SolidPalette};
 use crate::render::depth::coverage::covers;
 use crate::render::depth::plane::DepthPlane;
+use crate::render::lines::LineMasks;
+use crate::render::transform::{ProjectedVertex, ScreenVertex};
+use crate::render::{bit, face_polygon, DrawMode, FrameCtx, Settings};
 use crate::{Error, Span, SpanSink};
 
 /// The fewest sub-pixel bits for which the sub-samples, at odd eighths of a pixel,
@@ -295,7 +295,7 @@ impl<'p, G: GreyPalette, const POLY: usize> GreyCompose<'p, G, POLY> {
                 found += 1;
             }
         }
-        super::need(found, self.small.len())?;
+        crate::render::need(found, self.small.len())?;
         self.small_len = found;
         Ok(())
     }

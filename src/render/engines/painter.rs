@@ -12,15 +12,15 @@ use fixed::types::extra::LeEqU32;
 use heapless::Vec;
 
 use super::codefill::DepthOrder;
-use super::compose::{FrameProbe, Palette};
-use super::idpass::{render_ids, FrameInput, IdPass, IdWorkspace};
-use super::transform::{ProjectedVertex, ScreenVertex};
-use super::{bit, index_polygon, need, FrameCtx, Settings, Stats};
 use crate::camera::Camera;
 use crate::geometry::Subpixel;
 use crate::mesh::{EdgeAdjacency, Mesh};
 use crate::render::band::IdBand;
+use crate::render::compose::{FrameProbe, Palette};
 use crate::render::depth::coverage::{covers_centre, fragments_may_overlap};
+use crate::render::idpass::{render_ids, FrameInput, IdPass, IdWorkspace};
+use crate::render::transform::{ProjectedVertex, ScreenVertex};
+use crate::render::{bit, index_polygon, need, FrameCtx, Settings, Stats};
 use crate::{Error, FillRule, ScanConverter, ScreenPoint, Span, SpanSink, Viewport};
 
 /// The list a [`PainterRenderer`] paints.
@@ -290,8 +290,8 @@ mod tests {
 
     use fixed::types::extra::U4;
 
-    use super::super::two_squares::{count, frame, squares};
     use super::*;
+    use crate::render::two_squares::{count, frame, squares};
     use crate::render::MonoPalette;
 
     fn paint(v: &[[f32; 3]], idx: &[u32], off: &[u32], list_len: usize) -> Result<Vec<u16>, Error> {

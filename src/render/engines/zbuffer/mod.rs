@@ -10,19 +10,29 @@ use embedded_graphics_core::pixelcolor::{BinaryColor, PixelColor};
 use fixed::types::extra::LeEqU32;
 use heapless::Vec;
 
-use super::abuffer::{GreyCompose, GreyPalette, SmallFace, GREY_MIN_BITS};
-use super::compose::{self, Compose, FrameProbe, Palette};
-use super::lines::{line_pass, LineMasks};
-use super::transform::{ProjectedVertex, ScreenVertex};
-use super::zband::{Depth, FaceSpans, ZBand};
-use super::zfan::{fan_rows, FanRow, FanSpans};
-use super::{band_rows, begin_frame, bit, face_polygon, FrameCtx, Settings, Stats, Workspace};
+mod abuffer;
+mod band;
+mod fan;
+
+pub use abuffer::{GreyPalette, GreyShades, SmallFace};
+pub use band::Depth;
+
+use abuffer::{GreyCompose, GREY_MIN_BITS};
+use band::{FaceSpans, ZBand};
+use fan::{fan_rows, FanRow, FanSpans};
+
 use crate::camera::Camera;
 use crate::geometry::Subpixel;
 use crate::mesh::{EdgeAdjacency, Mesh};
 use crate::render::band::IdBand;
+use crate::render::compose::{self, Compose, FrameProbe, Palette};
 use crate::render::depth::fan::takes_fan_depth;
 use crate::render::depth::plane::DepthPlane;
+use crate::render::lines::{line_pass, LineMasks};
+use crate::render::transform::{ProjectedVertex, ScreenVertex};
+use crate::render::{
+    band_rows, begin_frame, bit, face_polygon, FrameCtx, Settings, Stats, Workspace,
+};
 use crate::scan::RowRange;
 use crate::{Error, FillRule, ScanConverter, ScreenPoint, SpanSink};
 
@@ -268,7 +278,7 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
             }
             // A face clipped to three corners keeps its single plane: it was a
             // triangle, or (one clipping plane) it kept one corner, so that every fan
-            // triangle has a corner cut away (see `zfan`).
+            // triangle has a corner cut away (see `fan`).
             if takes_fan_depth(ctx.mesh, f, &poly, &plane) {
                 spans += self.fan_face(ctx, vertices, f, &points, &plane, band)?;
                 continue;

@@ -77,12 +77,12 @@ pub use facets::MAX_CORNERS;
 pub use holes::MAX_CHECKED_FACES;
 pub use view::FastVertex;
 
-use super::compose::{FrameProbe, Palette};
-use super::{Cull, Settings, Stats};
 use crate::bits::{bit, set_bit};
 use crate::camera::{dot, Camera};
 use crate::error::need;
 use crate::mesh::{EdgeKind, Viewpoint};
+use crate::render::compose::{FrameProbe, Palette};
+use crate::render::{Cull, Settings, Stats};
 use crate::{Error, SpanSink, Viewport};
 use active::ActiveFacets;
 use clip::{clip_polygon, clip_segment};
@@ -106,11 +106,11 @@ const NONE: u16 = 0xFFFF;
 /// Storage the caller lends for one frame of the fast engine. Sizes: `vertices` >=
 /// the mesh's vertices; `facing` >= faces / 32 words; `face_links` >= faces;
 /// `line_links` >= edges; `heads` >= 2 x height; `row` >= width; `masks` >= 2 x
-/// ceil(width / 32) (3 x with [`Dashes::Along`](super::Dashes::Along)); `pool`
+/// ceil(width / 32) (3 x with [`Dashes::Along`](crate::render::Dashes::Along)); `pool`
 /// holds the corners of the frame's clipped faces (0 when nothing is clipped; at
 /// most 65,535 are used); `slopes` >= faces; `ids` >= width when a [`FrameProbe`]
 /// looks at the rows, else it may be empty; `phases` >= `LINES` with
-/// [`Dashes::Along`](super::Dashes::Along), else it may be empty.
+/// [`Dashes::Along`](crate::render::Dashes::Along), else it may be empty.
 /// [`FastWorkspace::bytes`] sums them.
 #[derive(Debug)]
 pub struct FastWorkspace<'s> {
@@ -136,7 +136,7 @@ pub struct FastWorkspace<'s> {
     /// Each face's steepest depth slope this frame (for the line test's margin).
     pub slopes: &'s mut [u16],
     /// The active lines' dash phases, one for each of the engine's `LINES`, with
-    /// [`Dashes::Along`](super::Dashes::Along); else it may be empty.
+    /// [`Dashes::Along`](crate::render::Dashes::Along); else it may be empty.
     pub phases: &'s mut [DashPhase],
 }
 

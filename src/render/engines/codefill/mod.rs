@@ -13,6 +13,7 @@
 //! depth (the nearest face at each pixel centre, ties to the lower face index) in
 //! memory that grows with a row.
 
+mod active;
 mod resolve;
 mod row;
 mod sliced;
@@ -23,23 +24,23 @@ use embedded_graphics_core::pixelcolor::PixelColor;
 use fixed::types::extra::LeEqU32;
 use heapless::Vec;
 
-use super::active::{ActiveEdge, ActiveEdges};
-use super::compose::{self, FrameProbe, Palette};
-use super::lines::{line_pass, LineMasks};
-use super::transform::{ProjectedVertex, ScreenVertex};
-use super::{band_rows, begin_frame, bit, index_polygon, need, FrameCtx, Settings, Stats};
 use crate::camera::Camera;
 use crate::geometry::Subpixel;
 use crate::mesh::{EdgeAdjacency, Mesh};
 pub use crate::order::DepthOrder;
 use crate::render::band::IdBand;
+use crate::render::compose::{self, FrameProbe, Palette};
 use crate::render::depth::plane::RowPlane;
+use crate::render::lines::{line_pass, LineMasks};
+use crate::render::transform::{ProjectedVertex, ScreenVertex};
+use crate::render::{band_rows, begin_frame, bit, index_polygon, need, FrameCtx, Settings, Stats};
 use crate::{Error, SpanSink};
+use active::{ActiveEdge, ActiveEdges};
 
 /// Storage the caller lends the code-fill engine for one frame. Sizes: `vertices`
 /// at least the mesh's vertex count; `drawn` faces / 32 words; `features` edges /
 /// 32 words; `order` one entry per face drawn; `ids` width x
-/// [`storage_rows`](super::storage_rows); `lines` 2 x ceil(width / 32) x band
+/// [`storage_rows`](crate::render::storage_rows); `lines` 2 x ceil(width / 32) x band
 /// rows. The band height follows from `ids.len() / width` as for the Z-buffer.
 #[derive(Debug)]
 pub struct CodeWorkspace<'s> {

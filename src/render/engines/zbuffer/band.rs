@@ -5,8 +5,8 @@ use core::convert::Infallible;
 
 use embedded_graphics_core::pixelcolor::BinaryColor;
 
-use super::band::IdBand;
-use super::depth::plane::{DepthPlane, RowPlane, STEP_BITS};
+use crate::render::band::IdBand;
+use crate::render::depth::plane::{DepthPlane, RowPlane, STEP_BITS};
 use crate::{Span, SpanSink, Viewport};
 
 /// A depth sample: 16 or 32 bits of nearness (larger is nearer).
@@ -40,7 +40,7 @@ impl Depth for u32 {
 }
 
 /// The Z-buffer's depth test of a row plane (the plane itself is shared:
-/// [`depth::plane`](super::depth::plane)).
+/// [`depth::plane`](crate::render::depth::plane)).
 impl RowPlane {
     /// Depth-tests pixels `x0..x1` of row `y` of `band` for face `id` with this
     /// plane (made for row 0), the values [`FaceSpans`] would give: nearer by more

@@ -5,9 +5,9 @@ use heapless::Vec;
 
 use fixed::types::extra::LeEqU32;
 
+use super::active::ActiveEdge;
 use super::resolve::RowFaces;
 use super::{ActiveFace, CodeFillRenderer, Surfaces, FOLD_MEMO, NO_BIT, OVER};
-use crate::render::active::ActiveEdge;
 use crate::render::depth::coverage::{fragments_may_overlap, has_area};
 use crate::render::depth::fan::bend;
 use crate::render::depth::fan::takes_fan_depth;

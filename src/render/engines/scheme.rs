@@ -26,16 +26,16 @@ use embedded_graphics_core::pixelcolor::{BinaryColor, PixelColor};
 use fixed::types::extra::LeEqU32;
 use heapless::Vec;
 
-use super::compose::{FrameProbe, Palette};
-use super::idpass::{render_ids, FrameInput, IdPass, IdWorkspace};
 use super::painter::reaches;
-use super::transform::{ProjectedVertex, ScreenVertex};
-use super::{bit, face_polygon, need, FrameCtx, Settings, Stats};
 use crate::camera::Camera;
 use crate::codes::{ColourTable, CombinationScheme, PathScheme, SchemeViolation, Visible};
 use crate::geometry::Subpixel;
 use crate::mesh::{EdgeAdjacency, Mesh};
 use crate::render::band::IdBand;
+use crate::render::compose::{FrameProbe, Palette};
+use crate::render::idpass::{render_ids, FrameInput, IdPass, IdWorkspace};
+use crate::render::transform::{ProjectedVertex, ScreenVertex};
+use crate::render::{bit, face_polygon, need, FrameCtx, Settings, Stats};
 use crate::{Error, FillRule, ScanConverter, ScreenPoint, Span, SpanSink, Viewport};
 
 /// Which path of the occlusion graph each pixel lies on: the paper's screen

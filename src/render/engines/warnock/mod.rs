@@ -53,18 +53,18 @@ use embedded_graphics_core::pixelcolor::PixelColor;
 use fixed::types::extra::LeEqU32;
 use heapless::Vec;
 
-use super::compose::{FrameProbe, Palette};
-use super::idpass::{render_ids, FrameInput, IdPass, IdWorkspace};
-use super::transform::{ProjectedVertex, ScreenVertex};
-use super::{bit, face_polygon, need, FrameCtx, Settings, Stats};
 use crate::camera::Camera;
 use crate::geometry::Subpixel;
 use crate::mesh::{EdgeAdjacency, Mesh};
 use crate::render::band::IdBand;
+use crate::render::compose::{FrameProbe, Palette};
 use crate::render::depth::coverage::covers_centre;
 use crate::render::depth::fan::{bend, ROUNDING};
 use crate::render::depth::fan::{fan_depth_at, takes_fan_depth};
 use crate::render::depth::plane::DepthPlane;
+use crate::render::idpass::{render_ids, FrameInput, IdPass, IdWorkspace};
+use crate::render::transform::{ProjectedVertex, ScreenVertex};
+use crate::render::{bit, face_polygon, need, FrameCtx, Settings, Stats};
 use crate::{Error, SpanSink};
 use geom::{convex_orientation, outside_an_edge, PixelBox, Rect};
 
@@ -132,7 +132,7 @@ pub struct WarnockSizes {
 impl WarnockSizes {
     /// Sizes for a mesh of `faces` faces in a `width` x `height` frame drawn in
     /// bands of `band_rows` rows, where `L = ceil(log2(max(width, held rows)))` and
-    /// the held rows are the band plus its apron ([`storage_rows`](super::storage_rows)).
+    /// the held rows are the band plus its apron ([`storage_rows`](crate::render::storage_rows)).
     /// Fewer list entries often do: a frame that needs more stops with
     /// [`Error::CapacityExceeded`] naming this bound.
     pub const fn for_frame(faces: usize, width: u16, height: u16, band_rows: u16) -> Self {

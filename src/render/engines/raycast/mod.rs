@@ -46,16 +46,16 @@ use embedded_graphics_core::pixelcolor::PixelColor;
 use fixed::types::extra::LeEqU32;
 use heapless::Vec;
 
-use super::compose::{FrameProbe, Palette};
-use super::idpass::{render_ids, FrameInput, IdPass, IdWorkspace};
-use super::transform::{ProjectedVertex, ScreenVertex};
-use super::{bit, face_polygon, need, FrameCtx, Settings, Stats};
 use crate::camera::Camera;
 use crate::geometry::Subpixel;
 use crate::mesh::{EdgeAdjacency, Mesh};
 use crate::render::band::IdBand;
+use crate::render::compose::{FrameProbe, Palette};
 use crate::render::depth::fan::takes_fan_depth;
 use crate::render::depth::plane::{DepthPlane, RowPlane};
+use crate::render::idpass::{render_ids, FrameInput, IdPass, IdWorkspace};
+use crate::render::transform::{ProjectedVertex, ScreenVertex};
+use crate::render::{bit, face_polygon, need, FrameCtx, Settings, Stats};
 use crate::{Error, SpanSink};
 use bvh::centre_box;
 

@@ -4,12 +4,12 @@ use std::vec::Vec;
 
 use fixed::types::extra::U4;
 
-use super::super::two_squares::{count, frame, squares};
 use super::*;
 use crate::codes::{coset_path_codes, level_node_codes, OcclusionGraph, HAMMING_8_4};
+use crate::render::two_squares::{count, frame, squares};
 use crate::render::MonoPalette;
 
-/// The two squares of [`two_squares`](super::super::two_squares), face 0 nearer (depth
+/// The two squares of [`two_squares`](crate::render::two_squares), face 0 nearer (depth
 /// 1 against 0), drawn with `coding`, `rows` rows of codes lent.
 fn draw<const W: usize, const E: usize>(
     coding: &SchemeCoding<'_, W, E>,

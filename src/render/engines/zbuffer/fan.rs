@@ -17,11 +17,11 @@ use core::convert::Infallible;
 use embedded_graphics_core::pixelcolor::BinaryColor;
 use heapless::Vec;
 
-use super::depth::fan::fan_corners;
-use super::depth::plane::{DepthPlane, RowPlane};
-use super::transform::{ProjectedVertex, ScreenVertex};
-use super::zband::{Depth, ZBand};
+use super::band::{Depth, ZBand};
 use crate::mesh::Mesh;
+use crate::render::depth::fan::fan_corners;
+use crate::render::depth::plane::{DepthPlane, RowPlane};
+use crate::render::transform::{ProjectedVertex, ScreenVertex};
 use crate::scan::edge::{Edge, EdgeLine};
 use crate::scan::RowRange;
 use crate::{Span, SpanSink, Viewport, GUARD_BAND_PX};
@@ -203,5 +203,5 @@ impl<D: Depth> SpanSink for FanSpans<'_, '_, '_, D> {
 }
 
 #[cfg(test)]
-#[path = "zfan_tests.rs"]
+#[path = "fan_tests.rs"]
 mod tests;
