@@ -364,3 +364,50 @@ fn grey_past_its_faces_at_a_pixel_names_the_flag() {
     assert!(err.contains("capacity 64 exceeded"), "{err}");
     assert!(!err.contains("render: render:"), "{err}");
 }
+
+/// `*` matches any run of characters, as callgrind's `--toggle-collect` does.
+fn glob(pattern: &str, text: &str) -> bool {
+    let parts: Vec<&str> = pattern.split('*').collect();
+    let (first, last) = (parts[0], parts[parts.len() - 1]);
+    if !text.starts_with(first) || !text[first.len()..].ends_with(last) {
+        return false;
+    }
+    let mut rest = &text[first.len()..text.len() - last.len()];
+    for part in &parts[1..parts.len() - 1] {
+        match rest.find(part) {
+            Some(i) => rest = &rest[i + part.len()..],
+            None => return false,
+        }
+    }
+    parts.len() > 1 || text == pattern
+}
+
+/// The report's callgrind counts leave out the host-only work by function name
+/// (`pipeline::EXCLUDED`): a move or rename that leaves a pattern matching nothing
+/// would silently count that work. Every pattern must name a function of the
+/// `report` binary.
+#[test]
+fn every_callgrind_exclusion_names_a_function_of_the_report_binary() {
+    let out = Command::new("nm")
+        .arg("-C")
+        .arg(env!("CARGO_BIN_EXE_report"))
+        .output()
+        .expect("nm (binutils) runs");
+    assert!(out.status.success(), "nm failed");
+    let symbols = String::from_utf8_lossy(&out.stdout);
+    let names: Vec<&str> = symbols
+        .lines()
+        .filter_map(|l| l.splitn(3, ' ').nth(2))
+        .collect();
+    assert!(
+        names.len() > 1000,
+        "{} symbols: is the binary stripped?",
+        names.len()
+    );
+    for pattern in host_tests::pipeline::EXCLUDED {
+        let hits = names.iter().filter(|n| glob(pattern, n)).count();
+        assert!(hits > 0, "no function of `report` matches {pattern:?}");
+    }
+    assert!(glob("*a::B as*C*d*", "<x::a::B as y::C>::d"));
+    assert!(!glob("*a::B as*C*d*", "<x::a::B as y::E>::f"));
+}
