@@ -1,4 +1,4 @@
-//! The camera of CONVENTIONS.md: `look_at` plus a perspective or orthographic
+//! The camera of [conventions](crate::conventions): `look_at` plus a perspective or orthographic
 //! projection, set up once per frame in `f32` (no libm on a microcontroller).
 //!
 //! The camera computes `tan` with its own series rather than a fast approximation

@@ -1,4 +1,5 @@
-//! The P-buffer's filtering pattern (Yuan and Sun's P-buffer paper): a small bit pattern repeated over
+//! The P-buffer's filtering pattern (Yuan and Sun's P-buffer paper): a small bit pattern
+//! repeated over
 //! the screen. A hidden edge pixel at (x, y) is drawn where the bit at
 //! (x mod width, y mod height) is 1.
 

@@ -1,4 +1,5 @@
-//! Modulo-2 edge-flag filling (the modulo-2 surface-filling paper's filler, with a one-surface code).
+//! Modulo-2 edge-flag filling (the modulo-2 surface-filling paper's filler, with a
+//! one-surface code).
 //!
 //! Each crossing XORs a flag into a bit-packed row; a running XOR, a word at a time,
 //! fills between flags. No sorting of crossings is needed: the XOR is order-free.

@@ -72,7 +72,8 @@ impl<'a> Mesh<'a> {
     ///    indices, then its indices ([`Error::IndexOutOfRange`] with the first bad
     ///    index).
     ///
-    /// As in CONVENTIONS.md, a face needs 3 valid indices, nothing more: a face whose
+    /// As in [conventions](crate::conventions), a face needs 3 valid indices, nothing more:
+    /// a face whose
     /// positions repeat (`f 1 2 1`) or lie on a line is valid, with a zero normal, so
     /// it covers no pixel and makes no crease or silhouette.
     pub fn new(
@@ -250,7 +251,7 @@ impl<'a> Mesh<'a> {
 }
 
 /// The weld key of a position: its coordinates' bit patterns, with `-0.0` written
-/// as `0.0` (CONVENTIONS.md: they weld; a mirrored model's seam has both).
+/// as `0.0` ([conventions](crate::conventions): they weld; a mirrored model's seam has both).
 pub(crate) fn weld_bits(p: &[f32; 3]) -> [u32; 3] {
     // Adding +0.0 turns -0.0 into +0.0 and leaves every other value alone.
     p.map(|c| (c + 0.0).to_bits())

@@ -248,7 +248,8 @@ impl<'s> BspTree<'s> {
     /// halves of a split share the split point's vertex index). A planar face starts
     /// as one fragment in its Newell plane through its centroid. A face that is not
     /// planar within [`PLANE_TOLERANCE`] takes its depth from its fan triangles
-    /// `(v0, vk, vk+1)` (CONVENTIONS.md), so when it is strictly convex in its own
+    /// `(v0, vk, vk+1)` ([conventions](crate::conventions)), so when it is strictly convex
+    /// in its own
     /// plane it starts as those triangles, each in its own plane (each extra triangle
     /// counts in [`splits`](Self::splits)); otherwise it stays whole, in its Newell
     /// plane. The fragments of the splitter's surface (face, or fan triangle) all

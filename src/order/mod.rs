@@ -1,5 +1,6 @@
 //! Depth order: a BSP tree built once for a static mesh, walked per viewpoint, or
-//! Newell's depth sort made per view ([`NewellOrder`]) (Laszlo's and Dutt's notes on hidden-surface removal).
+//! Newell's depth sort made per view ([`NewellOrder`]) (Laszlo's and Dutt's notes on
+//! hidden-surface removal).
 //!
 //! [`BspTree::build`] splits the mesh's faces into fragments so that every node's
 //! plane has its subtrees' fragments strictly on one side each; it runs on an
@@ -8,8 +9,9 @@
 //! then ranks the fragments for a [`Viewpoint`](crate::Viewpoint), nearest first, in
 //! one iterative walk: for any ray from the eye, the nearest fragment it meets has
 //! the lowest rank among those it meets, and fragments at equal depth (coplanar)
-//! rank by source face id, lower first (CONVENTIONS.md: on equal depth the lower
-//! face index wins). That order is what weight-1 surface codes need (the modulo-2 surface-filling paper).
+//! rank by source face id, lower first ([conventions](crate::conventions): on equal depth the lower
+//! face index wins). That order is what weight-1 surface codes need (the modulo-2
+//! surface-filling paper).
 
 mod bsp;
 mod build;

@@ -116,7 +116,8 @@ impl Plane {
 /// polygon that must be cut is cut by the exact signs of the distances
 /// (`positive`, `negative`, `zero`, `crossings`, `runs`), so that its pieces tile
 /// it: a vertex within tolerance but off the plane goes to its own side, and a
-/// vertex exactly on the plane to the front and to the back pieces it bounds. (Cutting by tolerant sides would put every vertex
+/// vertex exactly on the plane to the front and to the back pieces it bounds. (Cutting by
+/// tolerant sides would put every vertex
 /// of a band to both halves; when the plane is nearly parallel to the polygon, the
 /// band holds vertices off the cut line and the halves overlap.)
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -249,7 +250,8 @@ pub(super) fn split_point(vertices: &[[f32; 3]], a: u32, sa: f64, b: u32, sb: f6
 /// and is strictly convex in its own Newell plane: every turn and every fan triangle
 /// winds the way of its normal.
 ///
-/// Why: CONVENTIONS.md gives a non-planar face the depth of the fan triangle a ray
+/// Why: [conventions](crate::conventions) gives a non-planar face the depth of the fan
+/// triangle a ray
 /// meets. Ordered as one plane, such a face misranks against a face that passes
 /// through its bulge (suzanne's quads); its fan triangles are planes and order
 /// exactly. The convexity keeps the coverage: the fan then tiles the polygon in its

@@ -7,7 +7,7 @@
 //! is not exactly on that line, and a pixel centre in the sliver between the two
 //! would be covered by neither fragment. So every split point records its *root
 //! segment*: the original mesh edge or the cut chord it lies on, as a pair of vertex
-//! indices compared by position bits (welded, CONVENTIONS.md). At the end, every
+//! indices compared by position bits (welded, [conventions](crate::conventions)). At the end, every
 //! fragment edge gets, in order, every split point of its root segment that lies
 //! strictly between its ends; both sides of an edge then have the same vertex
 //! sequence.

@@ -2,9 +2,10 @@
 //!
 //! Per frame (shared): transform every vertex once (fixed point), mark drawn faces
 //! and the view's feature edges. Then a visibility engine fills the face ids of a
-//! band of rows: [`ZBufferRenderer`] (paper 000's depth buffer, in bands) or
-//! [`CodeFillRenderer`] (paper 003's modulo-2 surface codes, one row at a time, no
-//! depth buffer) or [`SchemeRenderer`] (paper 003's schemes 1 and 2: codes made once
+//! band of rows: [`ZBufferRenderer`] (the P-buffer paper's depth buffer, in bands) or
+//! [`CodeFillRenderer`] (the modulo-2 surface-filling paper's surface codes, one row at a time, no
+//! depth buffer) or [`SchemeRenderer`] (the modulo-2 surface-filling paper's schemes 1 and
+//! 2: codes made once
 //! for a fixed scene, decoded by a colour table). The line pass draws the feature
 //! edges that reach the band into a visible and a hidden mask (the P-buffer pattern
 //! decides hidden pixels), and composition turns each row into spans.

@@ -1,6 +1,6 @@
 //! Scan conversion of screen-space polygons into spans: the span core.
 //!
-//! Coverage follows `CONVENTIONS.md` exactly: pixel (i, j) is covered when its
+//! Coverage follows [conventions](crate::conventions) exactly: pixel (i, j) is covered when its
 //! centre, nudged by `(+e, +e^2)`, is inside the polygon (even-odd, or non-zero
 //! winding as an option). This is the top-left rule, and it makes shared edges
 //! watertight. Every decision is integer arithmetic on the snapped vertices; see

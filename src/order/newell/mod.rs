@@ -18,10 +18,10 @@
 //! again is a cycle, and so are two polygons that may each obscure the other (they
 //! interpenetrate): one is *split* by the other's plane and its pieces replace it.
 //! Coplanar polygons whose projections overlap go by face index: the lower one is
-//! painted last (ranks nearer, CONVENTIONS.md).
+//! painted last (ranks nearer, [conventions](crate::conventions)).
 //!
 //! A convex face that is not planar enters the sort as its fan triangles, each a
-//! plane (as in the BSP build; CONVENTIONS.md gives such a face the depth of the
+//! plane (as in the BSP build; [conventions](crate::conventions) gives such a face the depth of the
 //! fan triangle a ray meets). Sides of a plane (tests 4 and 5, and whether a plane
 //! cuts a polygon) are decided with the BSP build's tolerance and, for a face that
 //! is not planar and not convex (one plane for the whole face), its own thickness:
@@ -245,7 +245,8 @@ impl<'s> NewellOrder<'s> {
     /// out, and faces of zero area, rank after all the others (by face index).
     ///
     /// A convex face that is not planar is taken as its fan triangles `(v0, vk,
-    /// vk+1)`, each in its own plane, as the BSP build takes it (CONVENTIONS.md gives
+    /// vk+1)`, each in its own plane, as the BSP build takes it
+    /// ([conventions](crate::conventions) gives
     /// such a face the depth of the fan triangle a ray meets); its fragments are
     /// never ordered against each other (they overlap only where the face folds on
     /// screen, which the renderer covers by the polygon's parity). Every other face

@@ -1,4 +1,4 @@
-//! The coverage point test of CONVENTIONS.md on one projected polygon: the same
+//! The coverage point test of [conventions](crate::conventions) on one projected polygon: the same
 //! answer as the scan converter's rows (`scan::edge`), one point at a time, for the
 //! engines that sample rather than scan (area subdivision, ray casting, picking,
 //! sub-pixel coverage); and [`polygon_contains`], whose boundary counts as inside,
@@ -54,7 +54,8 @@ pub(crate) fn covers(poly: &[ScreenVertex], px: i64, py: i64) -> bool {
 /// May the fragments of a face with these corners overlap on screen? A depth order
 /// cuts a face that is not planar into fragments (its fan triangles, pieces along
 /// cutting chords); their parity always adds up to the face's even-odd coverage
-/// (CONVENTIONS.md), but an engine that draws each fragment on its own covers their
+/// ([conventions](crate::conventions)), but an engine that draws each fragment on its own
+/// covers their
 /// overlap, where the face does not. (A planar face's pieces tile it in any view;
 /// [`fragments_may_overlap`] asks this together with planarity.) They cannot overlap when the face
 /// projects to a strictly convex polygon, winding once (every turn and every fan

@@ -1,5 +1,5 @@
 //! The fan triangles `(v0, vi, vi+1)` of a face that is not planar, whose depth
-//! CONVENTIONS.md gives such a face at a point: which faces take it
+//! [conventions](crate::conventions) gives such a face at a point: which faces take it
 //! ([`takes_fan_depth`]), how far they leave the face's single plane ([`bend`]), and
 //! their depth at a point ([`fan_depth_at`], [`triangle_at`]).
 

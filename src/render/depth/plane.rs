@@ -142,7 +142,8 @@ impl DepthPlane {
     }
 
     /// Depth difference within which this face and an earlier one tie (the earlier,
-    /// lower index wins, CONVENTIONS.md): the uncertainty of a plane through vertices
+    /// lower index wins, [conventions](crate::conventions)): the uncertainty of a plane
+    /// through vertices
     /// snapped to the sub-pixel grid (1/32 px at each vertex, for each of two faces),
     /// a sixteenth of a pixel's depth change, plus the
     /// rounding of the vertices' nearness. Exactly coplanar faces then tie.

@@ -5,13 +5,34 @@
 //!
 //! | type (short alias) | `render --engine` | what it is for, when to choose it |
 //! |---|---|---|
-//! | [`FastRenderer`] ([`Fast`]) | `fast` (the default) | A scan-line Z-buffer one row high, 16-bit depth, per-mesh constants baked on the host ([`BakedMesh`]): the microcontroller engine, integer work per pixel and memory that grows with one row; approximate within the bounds its module states (line pixels tested at pixel centres, 16.16 edge steps). |
-//! | [`ZBufferRenderer`] ([`ZBuffer`]) | `zbuffer` | The depth buffer of Yuan and Sun's P-buffer paper (16- or 32-bit samples, [`Depth`]) in bands of rows: exact, the frame the Warnock and ray-casting engines reproduce; the only engine with anti-aliased grey output ([`render_grey`](ZBufferRenderer::render_grey)). Memory grows with the band. |
-//! | [`CodeFillRenderer`] ([`CodeFill`]) | `codefill`, `codefill-crossings`, `scanline` | The modulo-2 surface-filling paper's surface codes, one row at a time, no depth buffer: in a depth order ([`Visibility::Order`], e.g. a BSP tree's; rows bit-sliced or as a crossing list, [`RowCodes`]) or with planes compared where faces overlap ([`Visibility::Planes`], the scan-line method: the Z-buffer's 32-bit frame). Exact, in memory that grows with a row. |
-//! | [`PainterRenderer`] ([`Painter`]) | `painter`, `bsp`, `newell` | List priority: polygons painted far to near with no depth test, by farthest depth ([`PaintOrder::FarthestDepth`], wrong on cyclic overlap and interpenetration, kept to show that) or in a depth order made elsewhere (a BSP tree walked per view, Newell's sort). |
-//! | [`SchemeRenderer`] ([`Scheme`]) | `codefill --scheme combination` or `path` | The modulo-2 surface-filling paper's schemes 1 and 2: face codes and a colour table made once ([`SchemeCoding`]) for a fixed scene whose occlusion graph is known; no depth per frame. |
-//! | [`WarnockRenderer`] ([`Warnock`]) | `warnock` | Warnock's area subdivision on a bounded stack in lent storage, down to pixels decided as the Z-buffer decides them: the Z-buffer's 32-bit frame without a depth buffer, at several times its instructions. |
-//! | [`RaycastRenderer`] ([`Raycast`]) | `raycast` | One fixed-point ray per pixel centre through a bounding-volume hierarchy built per frame in lent storage: the Z-buffer's 32-bit frame without a depth buffer, at several times its instructions. |
+//! | [`FastRenderer`] ([`Fast`]) | `fast` (the default) | A scan-line Z-buffer one row
+//! high, 16-bit depth, per-mesh constants baked on the host ([`BakedMesh`]): the
+//! microcontroller engine, integer work per pixel and memory that grows with one row;
+//! approximate within the bounds its module states (line pixels tested at pixel centres,
+//! 16.16 edge steps). |
+//! | [`ZBufferRenderer`] ([`ZBuffer`]) | `zbuffer` | The depth buffer of Yuan and Sun's
+//! P-buffer paper (16- or 32-bit samples, [`Depth`]) in bands of rows: exact, the frame the
+//! Warnock and ray-casting engines reproduce; the only engine with anti-aliased grey output
+//! ([`render_grey`](ZBufferRenderer::render_grey)). Memory grows with the band. |
+//! | [`CodeFillRenderer`] ([`CodeFill`]) | `codefill`, `codefill-crossings`, `scanline` |
+//! The modulo-2 surface-filling paper's surface codes, one row at a time, no depth buffer:
+//! in a depth order ([`Visibility::Order`], e.g. a BSP tree's; rows bit-sliced or as a
+//! crossing list, [`RowCodes`]) or with planes compared where faces overlap
+//! ([`Visibility::Planes`], the scan-line method: the Z-buffer's 32-bit frame). Exact, in
+//! memory that grows with a row. |
+//! | [`PainterRenderer`] ([`Painter`]) | `painter`, `bsp`, `newell` | List priority:
+//! polygons painted far to near with no depth test, by farthest depth
+//! ([`PaintOrder::FarthestDepth`], wrong on cyclic overlap and interpenetration, kept to
+//! show that) or in a depth order made elsewhere (a BSP tree walked per view, Newell's sort). |
+//! | [`SchemeRenderer`] ([`Scheme`]) | `codefill --scheme combination` or `path` | The
+//! modulo-2 surface-filling paper's schemes 1 and 2: face codes and a colour table made
+//! once ([`SchemeCoding`]) for a fixed scene whose occlusion graph is known; no depth per frame. |
+//! | [`WarnockRenderer`] ([`Warnock`]) | `warnock` | Warnock's area subdivision on a
+//! bounded stack in lent storage, down to pixels decided as the Z-buffer decides them: the
+//! Z-buffer's 32-bit frame without a depth buffer, at several times its instructions. |
+//! | [`RaycastRenderer`] ([`Raycast`]) | `raycast` | One fixed-point ray per pixel centre
+//! through a bounding-volume hierarchy built per frame in lent storage: the Z-buffer's
+//! 32-bit frame without a depth buffer, at several times its instructions. |
 //!
 //! The aliases fix S to 4 sub-pixel bits ([`U4`], the default of [`Drawing`]) and
 //! the capacities the examples and tests use for one clipped face (16 vertices, so

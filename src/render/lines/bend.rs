@@ -1,4 +1,5 @@
-//! The hidden-line test's depth of a face that is not planar. CONVENTIONS.md gives
+//! The hidden-line test's depth of a face that is not planar.
+//! [conventions](crate::conventions) gives
 //! such a face the depth of its fan triangle `(v0, vi, vi+1)` at the point; the line
 //! test holds one plane per face (the largest fan triangle's, [`DepthPlane::new`]).
 //! Within a fan triangle the difference between its plane and the face's is linear,

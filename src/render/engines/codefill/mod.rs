@@ -1,4 +1,5 @@
-//! The code-fill engine of paper 003: visibility one row at a time, no depth buffer.
+//! The code-fill engine of the modulo-2 surface-filling paper: visibility one row at a
+//! time, no depth buffer.
 //!
 //! Faces become active at their first row (they are sorted by it) and their edges
 //! join one active edge list. On each row the crossings are taken left to right and
@@ -98,7 +99,8 @@ pub enum Visibility<'o> {
     /// A front-to-back order of the mesh's faces, or of fragments of them (a BSP
     /// tree's): the faces active on a row take weight-1 codes in that order, and the
     /// lowest bit set in a pixel's code names its nearest face (the priority encoder
-    /// of paper 003, scheme 3). No depth is compared at all; the code is as wide as
+    /// of the modulo-2 surface-filling paper, scheme 3). No depth is compared at all; the
+    /// code is as wide as
     /// the faces active on one row.
     Order(DepthOrder<'o>),
 }
@@ -139,7 +141,8 @@ struct ActiveFace {
     /// `coverage::folded`): its fragments can overlap on screen, and the face covers
     /// a pixel only where an odd number of them do.
     fold: bool,
-    /// Planes: how far its fan triangles may leave `plane` ([`bend`](crate::render::depth::fan::bend)),
+    /// Planes: how far its fan triangles may leave `plane`
+    /// ([`bend`](crate::render::depth::fan::bend)),
     /// 0 for a planar face (see `resolve_overlap`).
     bend: u32,
     /// The row after its last.

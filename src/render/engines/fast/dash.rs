@@ -62,7 +62,8 @@ const SOLID: u32 = u32::MAX;
 
 /// A feature line's dash phase along its edge ([`Dashes::Along`]), in turns of
 /// the dash pattern: `at0 + k step` at pixel centre `k` (wrapping). The fast
-/// engine keeps one for each active line in [`FastWorkspace::phases`](super::FastWorkspace::phases).
+/// engine keeps one for each active line in
+/// [`FastWorkspace::phases`](super::FastWorkspace::phases).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct DashPhase {

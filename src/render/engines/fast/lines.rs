@@ -84,7 +84,8 @@ pub(super) enum LineTest {
 impl ActiveLine {
     /// The line between `a` and `b` (snapped screen points) with own faces
     /// `faces`; `None` when it has no pixel centre.
-    /// `edge` is its index in the baked edge list. `along`: the frame's dashes along the edges, and the anchor
+    /// `edge` is its index in the baked edge list. `along`: the frame's dashes along the
+    /// edges, and the anchor
     /// (`2^-S` px), the unclipped position of the edge's end on `a`'s side;
     /// the line's dash phase comes with it ([`DashPhase::SCREEN`] without `along`).
     pub fn new(

@@ -15,7 +15,7 @@
 //! anywhere in a frame. Working memory grows with one row and the active facets
 //! and lines, not with the frame.
 //!
-//! # What it bends (`CONVENTIONS.md`, "Approximate engines")
+//! # What it bends ([conventions](crate::conventions), "Approximate engines")
 //! It keeps the fill rule (pixel centres, top-left, even-odd, watertight shared
 //! edges), the tie rule (equal depth: the lower face index wins) and the outputs.
 //! It bends, measured against the f64 reference in `BENCHMARKS.md`:

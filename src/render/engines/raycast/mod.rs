@@ -6,7 +6,8 @@
 //! covers the centre ([`covers_centre`], the scan converter's decision) and at the
 //! face's plane nearness there, the very value the Z-buffer stores; a face that is
 //! not planar ([`takes_fan_depth`]) at the nearness of its fan triangle that holds
-//! the centre ([`fan_depth_at`], as the scan-line method asks it; CONVENTIONS.md).
+//! the centre ([`fan_depth_at`], as the scan-line method asks it;
+//! [conventions](crate::conventions)).
 //! The cast is exact in fixed point, and it decides each pixel as the Z-buffer
 //! does (32-bit depth): of the covering faces taken in index order, a later face
 //! wins only when nearer by more than its tie. (A fan triangle's depth is evaluated

@@ -4,7 +4,8 @@
 //! (full coverage). Any other pixel (an edge pixel) is sampled on a 4 x 4 grid at
 //! (i + (a + 1/2) / 4, j + (b + 1/2) / 4): each face seen in the neighbourhood (at
 //! most 9) gets a 16-bit mask of the sub-samples it covers (the coverage point test
-//! of CONVENTIONS.md, exact on the fixed-point grid), and each sub-sample goes to
+//! of [conventions](crate::conventions), exact on the fixed-point grid), and each
+//! sub-sample goes to
 //! the nearest face covering it, with the Z-buffer's tie rule (the lower face index
 //! wins within [`DepthPlane::tie`]), or to the background. The pixel's grey is the
 //! mean of the 16 sub-samples' greys. Feature-edge lines stay solid in the line

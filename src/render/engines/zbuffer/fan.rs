@@ -1,11 +1,13 @@
-//! Faces that are not planar, in the Z-buffer: CONVENTIONS.md gives such a face the
+//! Faces that are not planar, in the Z-buffer: [conventions](crate::conventions) gives such
+//! a face the
 //! depth of the fan triangle `(v0, vi, vi+1)` the ray meets, and the coverage of its
 //! projected polygon (even-odd).
 //!
 //! The polygon is scan-converted as any face is, so its coverage is unchanged; each of
 //! its spans is then depth-tested piece by piece: the part inside fan triangle `k`'s
 //! projection (its run on the row, from its edges' DDAs: the scan converter's own
-//! exact crossing rule) with triangle `k`'s plane. Where fan triangles overlap (the face folds) the pixel
+//! exact crossing rule) with triangle `k`'s plane. Where fan triangles overlap (the face
+//! folds) the pixel
 //! keeps the nearest. The parity of the fan triangles is the polygon's coverage, so
 //! every pixel of a span lies in at least one of them; the face's single plane
 //! ([`DepthPlane::new`]) is only the fallback for a pixel that does not (a fan triangle

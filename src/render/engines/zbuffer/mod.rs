@@ -1,4 +1,4 @@
-//! The Z-buffer engine of paper 000, in bands of rows.
+//! The Z-buffer engine of Yuan and Sun's P-buffer paper, in bands of rows.
 //!
 //! Per band: depth-test the faces that reach the band (each face's edges are set up
 //! at the band's first row), then the shared line pass and composition.
@@ -41,7 +41,8 @@ use crate::{Error, FillRule, ScanConverter, ScreenPoint, SpanSink};
 ///
 /// A face of more than three corners that is not planar takes the depth of each
 /// pixel from its fan triangle `(v0, vi, vi+1)` that holds the pixel centre
-/// (CONVENTIONS.md) in the depth test; drawing one sets up its fan triangles on the
+/// ([conventions](crate::conventions)) in the depth test; drawing one sets up its fan
+/// triangles on the
 /// stack, about 150 bytes for each of `POLY`. The hidden-line test, shared by every
 /// engine, asks such a face's fan triangle where its single plane cannot decide.
 #[derive(Debug)]
