@@ -1,11 +1,11 @@
-//! The frame loop shared by the engines that only fill face ids (no depth band):
-//! the painter's and list-priority orders, area subdivision and ray casting. Each
-//! engine is an [`IdPass`]; the loop around it (front end, line pass, composition)
-//! is the one every engine uses.
+//! The frame loop of the banded engines: the Z-buffer (its depth band lent to its
+//! pass), the painter's and list-priority orders, the coding schemes, area
+//! subdivision and ray casting. Each engine is an [`IdPass`] that fills a band's face
+//! ids; the loop around it (front end, bands, line pass, composition) is this one.
 
 use embedded_graphics_core::pixelcolor::PixelColor;
 
-use super::compose::{self, FrameProbe, Palette};
+use super::compose::{Compose, FrameProbe};
 use super::lines::{line_pass, LineMasks};
 use super::transform::ProjectedVertex;
 use super::{band_rows, begin_frame, FrameCtx, Settings, Stats};
@@ -57,6 +57,16 @@ pub(crate) trait IdPass {
         drawn: &[u32],
     ) -> Result<(), Error>;
 
+    /// Samples a band may hold, besides the ids (a depth band's length): the band
+    /// height follows from the smaller of this and the ids.
+    fn samples(&self) -> usize {
+        usize::MAX
+    }
+
+    /// Adds the pass's own figures to the frame's, once the frame is set up with
+    /// bands of `band_rows` rows.
+    fn frame_stats(&self, _ctx: &FrameCtx<'_, '_>, _band_rows: u16, _stats: &mut Stats) {}
+
     /// Fills every held row of `band` (its own rows and the apron) with the id of the
     /// visible face at each pixel (0 none); returns a count for `Stats::spans`.
     fn fill(
@@ -79,18 +89,13 @@ pub(crate) struct FrameInput<'a, 'm> {
     pub s: u32,
 }
 
-/// Renders one frame with `pass` deciding the visible faces.
-pub(crate) fn render_ids<
-    const POLY: usize,
-    E: IdPass,
-    K: SpanSink,
-    P: Palette<Color = K::Color>,
-    R: FrameProbe,
->(
+/// Renders one frame with `pass` deciding the visible faces and `composer` turning
+/// each finished band into spans (`compose::Flat` for a palette).
+pub(crate) fn render_ids<const POLY: usize, E: IdPass, K: SpanSink, C: Compose<K>, R: FrameProbe>(
     pass: &mut E,
     input: &FrameInput<'_, '_>,
     ws: &mut IdWorkspace<'_>,
-    palette: &P,
+    composer: &mut C,
     sink: &mut K,
     probe: &mut R,
 ) -> Result<Stats, Error<K::Error>>
@@ -100,7 +105,8 @@ where
     let viewport = sink.viewport();
     let (width, height) = (viewport.width, viewport.height);
     let row_words = usize::from(width).div_ceil(32);
-    let band_rows = band_rows(viewport, ws.ids.len(), ws.lines.len()).map_err(Error::widen)?;
+    let samples = ws.ids.len().min(pass.samples());
+    let band_rows = band_rows(viewport, samples, ws.lines.len()).map_err(Error::widen)?;
     let mut stats = Stats {
         band_rows: u32::from(band_rows),
         ..Stats::default()
@@ -119,6 +125,7 @@ where
         &mut stats,
     )
     .map_err(Error::widen)?;
+    pass.frame_stats(&ctx, band_rows, &mut stats);
     let IdWorkspace {
         vertices,
         drawn,
@@ -165,8 +172,7 @@ where
             );
         }
         stats.spans +=
-            compose::emit_band(&ctx, settings, &band, &masks, drawn, palette, sink, probe)
-                .map_err(Error::Target)?;
+            composer.band(&ctx, settings, vertices, drawn, &band, &masks, sink, probe)?;
         top += rows;
     }
     sink.flush().map_err(Error::Target)?;

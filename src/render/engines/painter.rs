@@ -16,7 +16,7 @@ use crate::camera::Camera;
 use crate::geometry::Subpixel;
 use crate::mesh::{EdgeAdjacency, Mesh};
 use crate::render::band::IdBand;
-use crate::render::compose::{FrameProbe, Palette};
+use crate::render::compose::{Flat, FrameProbe, Palette};
 use crate::render::depth::coverage::{covers_centre, fragments_may_overlap};
 use crate::render::idpass::{render_ids, FrameInput, IdPass, IdWorkspace};
 use crate::render::transform::{ProjectedVertex, ScreenVertex};
@@ -108,7 +108,7 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> PainterRenderer<Frac,
             list,
             len: 0,
         };
-        render_ids::<POLY, _, _, _, _>(&mut pass, &input, ws, palette, sink, probe)
+        render_ids::<POLY, _, _, _, _>(&mut pass, &input, ws, &mut Flat(palette), sink, probe)
     }
 }
 

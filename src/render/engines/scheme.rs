@@ -32,7 +32,7 @@ use crate::codes::{ColourTable, CombinationScheme, PathScheme, SchemeViolation, 
 use crate::geometry::Subpixel;
 use crate::mesh::{EdgeAdjacency, Mesh};
 use crate::render::band::IdBand;
-use crate::render::compose::{FrameProbe, Palette};
+use crate::render::compose::{Flat, FrameProbe, Palette};
 use crate::render::idpass::{render_ids, FrameInput, IdPass, IdWorkspace};
 use crate::render::transform::{ProjectedVertex, ScreenVertex};
 use crate::render::{bit, face_polygon, need, FrameCtx, Settings, Stats};
@@ -258,7 +258,7 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> SchemeRenderer<Frac, 
             codes,
         };
         let mut stats =
-            render_ids::<POLY, _, _, _, _>(&mut pass, &input, ws, palette, sink, probe)?;
+            render_ids::<POLY, _, _, _, _>(&mut pass, &input, ws, &mut Flat(palette), sink, probe)?;
         stats.code_bits = coding.width();
         Ok(stats)
     }

@@ -51,7 +51,7 @@ use crate::camera::Camera;
 use crate::geometry::Subpixel;
 use crate::mesh::{EdgeAdjacency, Mesh};
 use crate::render::band::IdBand;
-use crate::render::compose::{FrameProbe, Palette};
+use crate::render::compose::{Flat, FrameProbe, Palette};
 use crate::render::depth::fan::takes_fan_depth;
 use crate::render::depth::plane::{DepthPlane, RowPlane};
 use crate::render::idpass::{render_ids, FrameInput, IdPass, IdWorkspace};
@@ -247,7 +247,8 @@ impl<Frac: LeEqU32, const POLY: usize> RaycastRenderer<Frac, POLY> {
             face_count: 0,
             figures: RaycastFigures::default(),
         };
-        let stats = render_ids::<POLY, _, _, _, _>(&mut pass, &input, ws, palette, sink, probe);
+        let stats =
+            render_ids::<POLY, _, _, _, _>(&mut pass, &input, ws, &mut Flat(palette), sink, probe);
         self.figures = pass.figures;
         stats
     }

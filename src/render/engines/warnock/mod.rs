@@ -57,7 +57,7 @@ use crate::camera::Camera;
 use crate::geometry::Subpixel;
 use crate::mesh::{EdgeAdjacency, Mesh};
 use crate::render::band::IdBand;
-use crate::render::compose::{FrameProbe, Palette};
+use crate::render::compose::{Flat, FrameProbe, Palette};
 use crate::render::depth::coverage::covers_centre;
 use crate::render::depth::fan::{bend, ROUNDING};
 use crate::render::depth::fan::{fan_depth_at, takes_fan_depth};
@@ -208,7 +208,7 @@ impl<Frac: LeEqU32, const POLY: usize> WarnockRenderer<Frac, POLY> {
             s: Subpixel::<Frac>::BITS,
         };
         let mut pass = Subdivide::<POLY> { storage, count: 0 };
-        render_ids::<POLY, _, _, _, _>(&mut pass, &input, ws, palette, sink, probe)
+        render_ids::<POLY, _, _, _, _>(&mut pass, &input, ws, &mut Flat(palette), sink, probe)
     }
 }
 

@@ -46,7 +46,14 @@ impl RowPlane {
     /// plane (made for row 0), the values [`FaceSpans`] would give: nearer by more
     /// than the tie wins, an empty pixel takes any face, and a pixel this face holds
     /// already (from another of its fan triangles) takes the nearer of the two.
-    pub fn depth_test<D: Depth>(&self, band: &mut ZBand<'_, D>, y: u16, x0: u16, x1: u16, id: u16) {
+    pub fn depth_test<D: Depth>(
+        &self,
+        band: &mut ZBand<'_, '_, D>,
+        y: u16,
+        x0: u16,
+        x1: u16,
+        id: u16,
+    ) {
         let Some(start) = band.ids.index(x0, y) else {
             return;
         };
@@ -74,30 +81,15 @@ impl RowPlane {
 /// Depth and face ids of one band of rows (see [`IdBand`] for the apron). Faces'
 /// spans go in through [`FaceSpans`].
 #[derive(Debug)]
-pub(crate) struct ZBand<'s, D> {
-    pub depth: &'s mut [D],
+pub(crate) struct ZBand<'d, 's, D> {
+    pub depth: &'d mut [D],
     pub ids: IdBand<'s>,
-}
-
-impl<D: Depth> ZBand<'_, D> {
-    /// Starts the band of rows `top .. top + rows` of a frame `height` high: no face
-    /// anywhere. Depth is left as it is: a pixel without a face takes any face's
-    /// depth (see [`FaceSpans`]).
-    pub fn reset(&mut self, top: u16, rows: u16, height: u16) {
-        // Every held row is cleared: the depth of earlier rows is gone.
-        self.ids.held = 0;
-        self.ids.advance(top, rows, height);
-        let n = usize::from(self.ids.width) * usize::from(self.ids.held);
-        if let Some(ids) = self.ids.ids.get_mut(..n) {
-            ids.fill(0);
-        }
-    }
 }
 
 /// A span sink that depth-tests one face's spans into a [`ZBand`].
 #[derive(Debug)]
-pub(crate) struct FaceSpans<'b, 's, D> {
-    pub band: &'b mut ZBand<'s, D>,
+pub(crate) struct FaceSpans<'b, 'd, 's, D> {
+    pub band: &'b mut ZBand<'d, 's, D>,
     pub plane: DepthPlane,
     /// 1 + face index.
     pub id: u16,
@@ -106,7 +98,7 @@ pub(crate) struct FaceSpans<'b, 's, D> {
     pub spans: u32,
 }
 
-impl<D: Depth> SpanSink for FaceSpans<'_, '_, D> {
+impl<D: Depth> SpanSink for FaceSpans<'_, '_, '_, D> {
     type Color = BinaryColor;
     type Error = Infallible;
 

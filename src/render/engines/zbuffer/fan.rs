@@ -136,8 +136,8 @@ pub(crate) fn fan_rows<const POLY: usize>(
 /// A span sink that depth-tests the spans of one face that is not planar into a
 /// [`ZBand`], each pixel with the plane of the fan triangle that holds its centre.
 #[derive(Debug)]
-pub(crate) struct FanSpans<'b, 's, 'f, D> {
-    pub band: &'b mut ZBand<'s, D>,
+pub(crate) struct FanSpans<'b, 'd, 's, 'f, D> {
+    pub band: &'b mut ZBand<'d, 's, D>,
     /// The face's fan triangles ([`fan_rows`]).
     pub fans: &'f mut [FanRow],
     /// The face's single plane, for a pixel no fan triangle holds.
@@ -155,7 +155,7 @@ pub(crate) struct FanSpans<'b, 's, 'f, D> {
     pub spans: u32,
 }
 
-impl<D: Depth> SpanSink for FanSpans<'_, '_, '_, D> {
+impl<D: Depth> SpanSink for FanSpans<'_, '_, '_, '_, D> {
     type Color = BinaryColor;
     type Error = Infallible;
 

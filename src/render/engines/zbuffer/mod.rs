@@ -28,11 +28,9 @@ use crate::render::band::IdBand;
 use crate::render::compose::{self, Compose, FrameProbe, Palette};
 use crate::render::depth::fan::takes_fan_depth;
 use crate::render::depth::plane::DepthPlane;
-use crate::render::lines::{line_pass, LineMasks};
+use crate::render::idpass::{render_ids, FrameInput, IdPass, IdWorkspace};
 use crate::render::transform::{ProjectedVertex, ScreenVertex};
-use crate::render::{
-    band_rows, begin_frame, bit, face_polygon, FrameCtx, Settings, Stats, Workspace,
-};
+use crate::render::{bit, face_polygon, FrameCtx, Settings, Stats, Workspace};
 use crate::scan::RowRange;
 use crate::{Error, FillRule, ScanConverter, ScreenPoint, SpanSink};
 
@@ -141,7 +139,8 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
         self.render_with(mesh, edges, camera, settings, ws, &mut grey, sink, probe)
     }
 
-    /// The frame loop, with `composer` turning each finished band into spans.
+    /// The frame: the shared band loop ([`render_ids`]) with this engine's depth
+    /// pass, and `composer` turning each finished band into spans.
     #[allow(clippy::too_many_arguments)]
     fn render_with<D: Depth, K: SpanSink, C: Compose<K>, R: FrameProbe>(
         &mut self,
@@ -154,35 +153,14 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
         sink: &mut K,
         probe: &mut R,
     ) -> Result<Stats, Error<K::Error>> {
-        let viewport = sink.viewport();
-        let (width, height) = (viewport.width, viewport.height);
-        let s = Subpixel::<Frac>::BITS;
-        let row_words = usize::from(width).div_ceil(32);
-        let w = usize::from(width).max(1);
-        let samples = ws.depth.len().min(ws.ids.len());
-        let band_rows = band_rows(viewport, samples, ws.lines.len()).map_err(Error::widen)?;
-        let mut stats = Stats {
-            band_rows: u32::from(band_rows),
-            depth_buffer_bytes: (usize::from(IdBand::rows_needed(band_rows, height))
-                * w
-                * size_of::<D>()) as u32,
-            ..Stats::default()
-        };
-        let ctx = begin_frame(
+        let input = FrameInput {
             mesh,
-            mesh.vertices(),
+            positions: mesh.vertices(),
             edges,
             camera,
             settings,
-            viewport,
-            s,
-            ws.vertices,
-            ws.drawn,
-            ws.features,
-            &mut stats,
-        )
-        .map_err(Error::widen)?;
-        (stats.depth_step_near, stats.depth_step_far) = ctx.view.depth_steps(D::BITS);
+            s: Subpixel::<Frac>::BITS,
+        };
         let Workspace {
             vertices,
             drawn,
@@ -191,36 +169,18 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
             ids,
             lines,
         } = ws;
-        let mut band = ZBand {
+        let mut ids = IdWorkspace {
+            vertices,
+            drawn,
+            features,
+            ids,
+            lines,
+        };
+        let mut pass = DepthPass {
+            engine: self,
             depth,
-            ids: IdBand::new(ids, width),
         };
-        let mut masks = LineMasks {
-            words: lines,
-            row_words,
-            rows: 0,
-        };
-        let mut top = 0u16;
-        while top < height && band_rows > 0 {
-            let rows = band_rows.min(height - top);
-            band.reset(top, rows, height);
-            masks.reset(rows);
-            stats.bands += 1;
-            if settings.mode.needs_depth() {
-                stats.spans += self.depth_pass(&ctx, vertices, drawn, &mut band)?;
-            }
-            if settings.mode.draws_lines() {
-                line_pass::<POLY>(
-                    &ctx, vertices, drawn, features, edges, settings, &band.ids, &mut masks,
-                );
-            }
-            stats.spans += composer.band(
-                &ctx, settings, vertices, drawn, &band.ids, &masks, sink, probe,
-            )?;
-            top += rows;
-        }
-        sink.flush().map_err(Error::Target)?;
-        Ok(stats)
+        render_ids::<POLY, _, _, _, _>(&mut pass, &input, &mut ids, composer, sink, probe)
     }
 
     /// Depth-tests every drawn face that reaches the band; returns the spans walked.
@@ -229,7 +189,7 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
         ctx: &FrameCtx<'_, '_>,
         vertices: &[ProjectedVertex],
         drawn: &[u32],
-        band: &mut ZBand<'_, D>,
+        band: &mut ZBand<'_, '_, D>,
     ) -> Result<u32, Error<T>> {
         let mut spans = 0;
         // Faces are walked over the apron too: the line test looks there.
@@ -320,7 +280,7 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
         f: usize,
         points: &[ScreenPoint<Frac>],
         plane: &DepthPlane,
-        band: &mut ZBand<'_, D>,
+        band: &mut ZBand<'_, '_, D>,
     ) -> Result<u32, Error<T>> {
         let rows = band.ids.first..band.ids.first + band.ids.held;
         let window = RowRange {
@@ -355,5 +315,56 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
                 other => other.widen(),
             })?;
         Ok(sink.spans)
+    }
+}
+
+/// One frame's depth pass: the engine and the depth band the caller lent.
+struct DepthPass<'e, 'd, Frac: LeEqU32, D, const EDGES: usize, const POLY: usize> {
+    engine: &'e mut ZBufferRenderer<Frac, EDGES, POLY>,
+    depth: &'d mut [D],
+}
+
+impl<Frac: LeEqU32, D: Depth, const EDGES: usize, const POLY: usize> IdPass
+    for DepthPass<'_, '_, Frac, D, EDGES, POLY>
+{
+    fn begin(
+        &mut self,
+        _: &FrameCtx<'_, '_>,
+        _: &[ProjectedVertex],
+        _: &[u32],
+    ) -> Result<(), Error> {
+        Ok(())
+    }
+
+    fn samples(&self) -> usize {
+        self.depth.len()
+    }
+
+    fn frame_stats(&self, ctx: &FrameCtx<'_, '_>, band_rows: u16, stats: &mut Stats) {
+        let viewport = ctx.viewport;
+        let rows = usize::from(IdBand::rows_needed(band_rows, viewport.height));
+        let w = usize::from(viewport.width).max(1);
+        stats.depth_buffer_bytes = (rows * w * size_of::<D>()) as u32;
+        (stats.depth_step_near, stats.depth_step_far) = ctx.view.depth_steps(D::BITS);
+    }
+
+    fn fill(
+        &mut self,
+        ctx: &FrameCtx<'_, '_>,
+        vertices: &[ProjectedVertex],
+        drawn: &[u32],
+        band: &mut IdBand<'_>,
+    ) -> Result<u32, Error> {
+        // The band's ids join the depth for the pass (a pixel without a face takes
+        // any face's depth, so depth is never cleared), then go back to the loop.
+        let width = band.width;
+        let ids = core::mem::replace(band, IdBand::new(&mut [], width));
+        let mut zband = ZBand {
+            depth: &mut *self.depth,
+            ids,
+        };
+        let spans = self.engine.depth_pass(ctx, vertices, drawn, &mut zband);
+        *band = zband.ids;
+        spans
     }
 }
