@@ -1,6 +1,7 @@
 //! The frame loop of the banded engines: the Z-buffer (its depth band lent to its
-//! pass), the painter's and list-priority orders, the coding schemes, area
-//! subdivision and ray casting. Each engine is an [`IdPass`] that fills a band's face
+//! pass), the code-fill engine (rows scanned in order, the shared apron kept), the
+//! painter's and list-priority orders, the coding schemes, area subdivision and ray
+//! casting. Only the fast engine, one row high, has its own. Each engine is an [`IdPass`] that fills a band's face
 //! ids; the loop around it (front end, bands, line pass, composition) is this one.
 
 use embedded_graphics_core::pixelcolor::PixelColor;
@@ -67,15 +68,30 @@ pub(crate) trait IdPass {
     /// bands of `band_rows` rows.
     fn frame_stats(&self, _ctx: &FrameCtx<'_, '_>, _band_rows: u16, _stats: &mut Stats) {}
 
-    /// Fills every held row of `band` (its own rows and the apron) with the id of the
-    /// visible face at each pixel (0 none); returns a count for `Stats::spans`.
+    /// Does the pass keep the rows of the apron a band shares with the next (a
+    /// pass that scans rows in order, once each)? Else every band starts empty.
+    fn keeps_rows(&self) -> bool {
+        false
+    }
+
+    /// Fills the held rows of `band` from row `fresh` on (every held row, its own
+    /// rows and the apron, unless the pass [keeps rows](Self::keeps_rows)) with the
+    /// id of the visible face at each pixel (0 none); returns a count for
+    /// `Stats::spans`.
     fn fill(
         &mut self,
         ctx: &FrameCtx<'_, '_>,
         vertices: &[ProjectedVertex],
         drawn: &[u32],
         band: &mut IdBand<'_>,
+        fresh: u16,
     ) -> Result<u32, Error>;
+
+    /// After the last band, before the sink is flushed: the pass's closing figures,
+    /// or the error the whole frame shows.
+    fn finish(&self, _stats: &mut Stats) -> Result<(), Error> {
+        Ok(())
+    }
 }
 
 /// What one id-filling frame draws: the mesh, and the vertex positions the engine's
@@ -137,6 +153,7 @@ where
     if settings.mode.needs_depth() {
         pass.begin(&ctx, vertices, drawn).map_err(Error::widen)?;
     }
+    let keeps_rows = pass.keeps_rows() && settings.mode.needs_depth();
     let mut band = IdBand::new(ids, width);
     let mut masks = LineMasks {
         words: lines,
@@ -146,17 +163,22 @@ where
     let mut top = 0u16;
     while top < height && band_rows > 0 {
         let rows = band_rows.min(height - top);
-        band.held = 0;
-        band.advance(top, rows, height);
-        let n = usize::from(width) * usize::from(band.held);
-        if let Some(held) = band.ids.get_mut(..n) {
-            held.fill(0);
-        }
+        let fresh = if keeps_rows {
+            band.advance(top, rows, height)
+        } else {
+            band.held = 0;
+            band.advance(top, rows, height);
+            let n = usize::from(width) * usize::from(band.held);
+            if let Some(held) = band.ids.get_mut(..n) {
+                held.fill(0);
+            }
+            band.first
+        };
         masks.reset(rows);
         stats.bands += 1;
         if settings.mode.needs_depth() {
             stats.spans += pass
-                .fill(&ctx, vertices, drawn, &mut band)
+                .fill(&ctx, vertices, drawn, &mut band, fresh)
                 .map_err(Error::widen)?;
         }
         if settings.mode.draws_lines() {
@@ -175,6 +197,7 @@ where
             composer.band(&ctx, settings, vertices, drawn, &band, &masks, sink, probe)?;
         top += rows;
     }
+    pass.finish(&mut stats).map_err(Error::widen)?;
     sink.flush().map_err(Error::Target)?;
     Ok(stats)
 }

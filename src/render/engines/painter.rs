@@ -177,6 +177,7 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> IdPass
         vertices: &[ProjectedVertex],
         _drawn: &[u32],
         band: &mut IdBand<'_>,
+        _fresh: u16,
     ) -> Result<u32, Error> {
         let mut poly: Vec<ScreenVertex, POLY> = Vec::new();
         let mut points: Vec<ScreenPoint<Frac>, POLY> = Vec::new();

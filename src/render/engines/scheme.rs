@@ -291,6 +291,7 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize, const W: usize, const
         vertices: &[ProjectedVertex],
         drawn: &[u32],
         band: &mut IdBand<'_>,
+        _fresh: u16,
     ) -> Result<u32, Error> {
         let width = usize::from(band.width);
         if width == 0 {

@@ -30,11 +30,11 @@ use crate::geometry::Subpixel;
 use crate::mesh::{EdgeAdjacency, Mesh};
 pub use crate::order::DepthOrder;
 use crate::render::band::IdBand;
-use crate::render::compose::{self, FrameProbe, Palette};
+use crate::render::compose::{Flat, FrameProbe, Palette};
 use crate::render::depth::plane::RowPlane;
-use crate::render::lines::{line_pass, LineMasks};
+use crate::render::idpass::{render_ids, FrameInput, IdPass, IdWorkspace};
 use crate::render::transform::{ProjectedVertex, ScreenVertex};
-use crate::render::{band_rows, begin_frame, bit, index_polygon, need, FrameCtx, Settings, Stats};
+use crate::render::{bit, index_polygon, need, FrameCtx, Settings, Stats};
 use crate::{Error, SpanSink};
 use active::{ActiveEdge, ActiveEdges};
 
@@ -361,29 +361,19 @@ impl<
             }
         };
         self.priority = matches!(visibility, Visibility::Order(_));
-        let viewport = sink.viewport();
-        let (width, height) = (viewport.width, viewport.height);
-        let s = Subpixel::<Frac>::BITS;
-        let row_words = usize::from(width).div_ceil(32);
-        let band_rows = band_rows(viewport, ws.ids.len(), ws.lines.len()).map_err(Error::widen)?;
-        let mut stats = Stats {
-            band_rows: u32::from(band_rows),
-            ..Stats::default()
-        };
-        let ctx = begin_frame(
+        self.begin();
+        if let RowCodes::BitSliced(words) = &mut codes {
+            // Each row leaves the buffer as it found it: all zero.
+            words.fill(0);
+        }
+        let input = FrameInput {
             mesh,
-            fill.mesh.vertices(),
+            positions: fill.mesh.vertices(),
             edges,
             camera,
             settings,
-            viewport,
-            s,
-            ws.vertices,
-            ws.drawn,
-            ws.features,
-            &mut stats,
-        )
-        .map_err(Error::widen)?;
+            s: Subpixel::<Frac>::BITS,
+        };
         let CodeWorkspace {
             vertices,
             drawn,
@@ -392,65 +382,21 @@ impl<
             ids,
             lines,
         } = ws;
-        let faces = if settings.mode.needs_depth() {
-            self.order_faces(&ctx, &fill, vertices, drawn, order)
-                .map_err(Error::widen)?
-        } else {
-            0
+        let mut ids = IdWorkspace {
+            vertices,
+            drawn,
+            features,
+            ids,
+            lines,
         };
-        let order = order.get(..faces).unwrap_or(&[]);
-        self.begin();
-        if let RowCodes::BitSliced(words) = &mut codes {
-            // Each row leaves the buffer as it found it: all zero.
-            words.fill(0);
-        }
-        let mut band = IdBand::new(ids, width);
-        let mut masks = LineMasks {
-            words: lines,
-            row_words,
-            rows: 0,
+        let mut pass = RowPass {
+            engine: self,
+            fill,
+            order,
+            faces: 0,
+            codes,
         };
-        let mut top = 0u16;
-        while top < height && band_rows > 0 {
-            let rows = band_rows.min(height - top);
-            let fresh = band.advance(top, rows, height);
-            masks.reset(rows);
-            stats.bands += 1;
-            for y in fresh..band.first + band.held {
-                let Some(out) = band.row_mut(y) else { continue };
-                if faces == 0 {
-                    out.fill(0);
-                    continue;
-                }
-                stats.spans += match &mut codes {
-                    RowCodes::Crossings => self.scan_row(&ctx, &fill, vertices, order, y, out),
-                    RowCodes::BitSliced(words) => {
-                        self.scan_row_sliced(&ctx, &fill, vertices, order, y, out, words)
-                    }
-                }
-                .map_err(Error::widen)?;
-            }
-            if settings.mode.draws_lines() {
-                line_pass::<POLY>(
-                    &ctx, vertices, drawn, features, edges, settings, &band, &mut masks,
-                );
-            }
-            stats.spans +=
-                compose::emit_band(&ctx, settings, &band, &masks, drawn, palette, sink, probe)
-                    .map_err(Error::Target)?;
-            top += rows;
-        }
-        stats.code_bits = self.widest as u32;
-        stats.peak_faces = self.peak_faces as u32;
-        stats.peak_edges = self.peak_edges as u32;
-        if self.widest > Self::CODE_BITS {
-            return Err(Error::CodeTooWide {
-                needed: self.widest,
-                capacity: Self::CODE_BITS,
-            });
-        }
-        sink.flush().map_err(Error::Target)?;
-        Ok(stats)
+        render_ids::<POLY, _, _, _, _>(&mut pass, &input, &mut ids, &mut Flat(palette), sink, probe)
     }
 
     /// Sorts the drawn faces that reach the frame's rows by first row into `order`;
@@ -530,4 +476,92 @@ fn row_span(s: u32, ys: impl Iterator<Item = i32>) -> Option<(i32, i32)> {
     let row = |y: i32| ((2 * i64::from(y) + h - 1) >> (s + 1)) as i32;
     let (first, end) = (row(lo), row(hi));
     (first < end).then_some((first, end))
+}
+
+/// One frame's rows: the engine, the surfaces it fills, the faces in order of
+/// their first row, and the row representation.
+struct RowPass<
+    'e,
+    's,
+    'w,
+    Frac: LeEqU32,
+    const WORDS: usize,
+    const FACES: usize,
+    const EDGES: usize,
+    const POLY: usize,
+> {
+    engine: &'e mut CodeFillRenderer<Frac, WORDS, FACES, EDGES, POLY>,
+    fill: Surfaces<'s>,
+    order: &'w mut [u32],
+    faces: usize,
+    codes: RowCodes<'w>,
+}
+
+impl<
+        Frac: LeEqU32,
+        const WORDS: usize,
+        const FACES: usize,
+        const EDGES: usize,
+        const POLY: usize,
+    > IdPass for RowPass<'_, '_, '_, Frac, WORDS, FACES, EDGES, POLY>
+{
+    fn begin(
+        &mut self,
+        ctx: &FrameCtx<'_, '_>,
+        vertices: &[ProjectedVertex],
+        drawn: &[u32],
+    ) -> Result<(), Error> {
+        self.faces = self
+            .engine
+            .order_faces(ctx, &self.fill, vertices, drawn, self.order)?;
+        Ok(())
+    }
+
+    /// Rows are scanned in order, once each: the apron a band shares with the next
+    /// is kept.
+    fn keeps_rows(&self) -> bool {
+        true
+    }
+
+    fn fill(
+        &mut self,
+        ctx: &FrameCtx<'_, '_>,
+        vertices: &[ProjectedVertex],
+        _: &[u32],
+        band: &mut IdBand<'_>,
+        fresh: u16,
+    ) -> Result<u32, Error> {
+        let order = self.order.get(..self.faces).unwrap_or(&[]);
+        let mut spans = 0;
+        for y in fresh..band.first + band.held {
+            let Some(out) = band.row_mut(y) else { continue };
+            if self.faces == 0 {
+                out.fill(0);
+                continue;
+            }
+            spans += match &mut self.codes {
+                RowCodes::Crossings => self
+                    .engine
+                    .scan_row(ctx, &self.fill, vertices, order, y, out),
+                RowCodes::BitSliced(words) => self
+                    .engine
+                    .scan_row_sliced(ctx, &self.fill, vertices, order, y, out, words),
+            }?;
+        }
+        Ok(spans)
+    }
+
+    fn finish(&self, stats: &mut Stats) -> Result<(), Error> {
+        let engine = &*self.engine;
+        stats.code_bits = engine.widest as u32;
+        stats.peak_faces = engine.peak_faces as u32;
+        stats.peak_edges = engine.peak_edges as u32;
+        if engine.widest > CodeFillRenderer::<Frac, WORDS, FACES, EDGES, POLY>::CODE_BITS {
+            return Err(Error::CodeTooWide {
+                needed: engine.widest,
+                capacity: CodeFillRenderer::<Frac, WORDS, FACES, EDGES, POLY>::CODE_BITS,
+            });
+        }
+        Ok(())
+    }
 }

@@ -319,6 +319,7 @@ impl<const POLY: usize> IdPass for Cast<'_, POLY> {
         vertices: &[ProjectedVertex],
         _drawn: &[u32],
         band: &mut IdBand<'_>,
+        _fresh: u16,
     ) -> Result<u32, Error> {
         let Some(&root) = self.nodes.first().filter(|_| self.node_count > 0) else {
             return Ok(0);

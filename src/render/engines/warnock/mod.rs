@@ -288,6 +288,7 @@ impl<const POLY: usize> IdPass for Subdivide<'_, POLY> {
         vertices: &[ProjectedVertex],
         _drawn: &[u32],
         band: &mut IdBand<'_>,
+        _fresh: u16,
     ) -> Result<u32, Error> {
         if band.held == 0 || band.width == 0 {
             return Ok(0);

@@ -354,6 +354,7 @@ impl<Frac: LeEqU32, D: Depth, const EDGES: usize, const POLY: usize> IdPass
         vertices: &[ProjectedVertex],
         drawn: &[u32],
         band: &mut IdBand<'_>,
+        _fresh: u16,
     ) -> Result<u32, Error> {
         // The band's ids join the depth for the pass (a pixel without a face takes
         // any face's depth, so depth is never cleared), then go back to the loop.
