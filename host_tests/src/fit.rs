@@ -52,7 +52,7 @@ fn used_vertices(mesh: &MeshData) -> Vec<[f64; 3]> {
 /// Bounding-box centre and bounding-sphere radius (about that centre) of the vertices
 /// used by faces (all vertices if no face uses any). An empty mesh gives (origin, 1);
 /// a radius of zero becomes 1.
-pub fn bounds(mesh: &MeshData) -> ([f64; 3], f64) {
+pub fn used_vertex_bounds(mesh: &MeshData) -> ([f64; 3], f64) {
     let used = used_vertices(mesh);
     if used.is_empty() {
         return ([0.0; 3], 1.0);
@@ -79,7 +79,7 @@ pub fn bounds(mesh: &MeshData) -> ([f64; 3], f64) {
 
 /// The fitted camera for a `width x height` frame (see the module documentation).
 pub fn fit_camera(mesh: &MeshData, width: usize, height: usize) -> CameraSpec {
-    let (c, r) = bounds(mesh);
+    let (c, r) = used_vertex_bounds(mesh);
     let aspect = if width > 0 && height > 0 {
         width as f64 / height as f64
     } else {

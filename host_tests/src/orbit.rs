@@ -4,7 +4,7 @@
 //! screenshot check (`scripts/simulator-check`) asks `render` for the same frame.
 
 use crate::cli::Look;
-use crate::fit::bounds;
+use crate::fit::used_vertex_bounds;
 use crate::frame::{
     CameraSpec, CullSpec, EngineSpec, MeshData, ModeSpec, ProjectionSpec, RenderSpec,
 };
@@ -71,7 +71,7 @@ fn unit(a: [f64; 3]) -> [f64; 3] {
 impl Orbit {
     /// Starts at `base` (a camera that `cli::check_camera` accepted) looking at `mesh`.
     pub fn new(base: CameraSpec, mesh: &MeshData) -> Self {
-        let (centre, radius) = bounds(mesh);
+        let (centre, radius) = used_vertex_bounds(mesh);
         Self {
             base,
             centre,

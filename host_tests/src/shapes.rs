@@ -66,7 +66,7 @@ pub fn three_quarter_camera(
     height: usize,
     ortho: bool,
 ) -> CameraSpec {
-    let (c, r) = bounds(mesh);
+    let (c, r) = all_vertex_bounds(mesh);
     let aspect = width as f64 / height.max(1) as f64;
     let dir = [1.0f64, 0.7, 1.6];
     let n = (dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]).sqrt();
@@ -95,7 +95,7 @@ pub fn three_quarter_camera(
 }
 
 /// Bounding-box centre and the radius of the sphere about it holding all vertices.
-pub fn bounds(mesh: &MeshData) -> ([f64; 3], f64) {
+pub fn all_vertex_bounds(mesh: &MeshData) -> ([f64; 3], f64) {
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
     for p in &mesh.vertices {

@@ -34,7 +34,7 @@ use host_tests::metrics::compare_surfaces;
 use host_tests::pipeline::render_frame;
 use host_tests::random::Rng;
 use host_tests::reference3d::reference_frame;
-use host_tests::shapes::{add_box, bounds};
+use host_tests::shapes::{add_box, all_vertex_bounds};
 
 /// Random boxes, some inside others.
 fn boxes(rng: &mut Rng) -> MeshData {
@@ -92,7 +92,7 @@ fn soup(rng: &mut Rng) -> MeshData {
 }
 
 fn camera(rng: &mut Rng, mesh: &MeshData, w: usize, h: usize) -> CameraSpec {
-    let (c, r) = bounds(mesh);
+    let (c, r) = all_vertex_bounds(mesh);
     let dir = loop {
         let d = [
             rng.range(-1.0, 1.0),

@@ -8,7 +8,7 @@
 
 use std::path::PathBuf;
 
-use host_tests::fit::{bounds, fit_camera};
+use host_tests::fit::{fit_camera, used_vertex_bounds};
 use host_tests::frame::{CameraSpec, EngineSpec, MeshData, ModeSpec, ProjectionSpec, RenderSpec};
 use host_tests::obj::load_obj;
 use host_tests::pipeline::render_frame;
@@ -35,7 +35,7 @@ fn models() -> Vec<(String, MeshData)> {
 /// The fitted view, one from straight above (perspective), and one orthographic from
 /// the side.
 fn views(mesh: &MeshData) -> Vec<(&'static str, CameraSpec)> {
-    let (c, r) = bounds(mesh);
+    let (c, r) = used_vertex_bounds(mesh);
     let side = CameraSpec {
         eye: [c[0] + 4.0 * r, c[1], c[2]],
         target: c,
@@ -58,7 +58,7 @@ fn views(mesh: &MeshData) -> Vec<(&'static str, CameraSpec)> {
 
 /// Straight down onto `mesh` from four bounding radii above its centre.
 fn above(mesh: &MeshData, projection: ProjectionSpec) -> CameraSpec {
-    let (c, r) = bounds(mesh);
+    let (c, r) = used_vertex_bounds(mesh);
     CameraSpec {
         eye: [c[0], c[1] + 4.0 * r, c[2]],
         target: c,
@@ -136,7 +136,7 @@ fn teapot_seam_of_negative_zero_welds() {
         .filter(|p| p.iter().any(|c| *c == 0.0 && c.is_sign_negative()))
         .count();
     assert!(negative > 0, "the teapot has no -0.0 coordinate any more");
-    let (_, r) = bounds(&mesh);
+    let (_, r) = used_vertex_bounds(&mesh);
     let cam = above(
         &mesh,
         ProjectionSpec::Orthographic {

@@ -52,7 +52,7 @@ use host_tests::metrics::{compare, SceneMetrics, SurfaceMetrics};
 use host_tests::pipeline::render_frame;
 use host_tests::random::Rng;
 use host_tests::reference3d::reference_frame;
-use host_tests::shapes::bounds;
+use host_tests::shapes::all_vertex_bounds;
 
 /// `engine`'s frame in `mode` (one full-frame band, S = 4, 32-bit depth) against the
 /// reference's: surface metrics in a surfaces mode, line metrics otherwise.
@@ -293,7 +293,7 @@ fn twisted_quads(rng: &mut Rng) -> (MeshData, CameraSpec, usize, usize) {
         mesh.faces.push((base..base + 4).collect());
     }
     let (w, h) = (16 + rng.below(300) as usize, 16 + rng.below(200) as usize);
-    let (centre, r) = bounds(&mesh);
+    let (centre, r) = all_vertex_bounds(&mesh);
     let dir = loop {
         let d = [0; 3].map(|_| rng.range(-1.0, 1.0));
         let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();

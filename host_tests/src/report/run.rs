@@ -74,7 +74,7 @@ pub fn scene_bounds(mesh: &crate::frame::MeshData, cam: &CameraSpec, layers: usi
         .flatten()
         .chain(cam.eye.iter())
         .fold(0.0f64, |m, c| m.max(c.abs()));
-    let (_, radius) = shapes::bounds(mesh);
+    let (_, radius) = shapes::all_vertex_bounds(mesh);
     // The distances drawn: the vertices' along the view, within near..far (depth is
     // scaled to them).
     let dir = sub(cam.target, cam.eye);

@@ -101,17 +101,12 @@ pub fn all() -> Vec<Config> {
 
 /// FNV-1a over the ids, the lines and the packed picture: equal hashes, equal frames.
 pub fn hash(frame: &Frame) -> u64 {
-    let mut h = 0xcbf2_9ce4_8422_2325u64;
-    let mut eat = |b: u8| {
-        h ^= u64::from(b);
-        h = h.wrapping_mul(0x0100_0000_01b3);
-    };
-    for &id in &frame.ids {
-        id.to_le_bytes().into_iter().for_each(&mut eat);
-    }
-    frame.lines.iter().copied().for_each(&mut eat);
-    frame.packed.iter().copied().for_each(&mut eat);
-    h
+    let ids = frame.ids.iter().flat_map(|id| id.to_le_bytes());
+    let bytes: Vec<u8> = ids
+        .chain(frame.lines.iter().copied())
+        .chain(frame.packed.iter().copied())
+        .collect();
+    host_tests::image::fnv1a64(&bytes)
 }
 
 /// A render spec of `w x h` at S = 4 in `mode` for `config`.
