@@ -87,7 +87,6 @@
 
 mod bits;
 pub mod camera;
-pub mod codefill;
 pub mod codes;
 mod drawing;
 mod error;
@@ -104,7 +103,6 @@ mod span;
 mod vector;
 
 pub use camera::{Camera, Projection};
-pub use codefill::XorFiller;
 pub use codes::SchemeViolation;
 pub use drawing::{Drawing, FrameRows, CLIPPED_CORNERS, CREASE_DEG};
 pub use error::{CameraProblem, EdgeProblem, Error};
@@ -120,8 +118,16 @@ pub use render::{
     MonoPalette, Palette, SchemeCoding, SchemeRenderer, Settings, SmallFace, SolidPalette, Stats,
     Visibility, Workspace, ZBufferRenderer,
 };
+pub use scan::XorFiller;
 pub use scan::{FillRule, ScanConverter};
 pub use span::{ContiguousRows, FillSolid, Span, SpanSink, ROW_SEGMENTS};
+
+/// The 2-D modulo-2 filler, now in [`scan`] beside the scan converter whose pixels
+/// it gives; these paths stay for one release. (The 3-D code-fill engine is
+/// [`render::CodeFillRenderer`].)
+pub mod codefill {
+    pub use crate::scan::{prefix_xor, CodeRow, XorFiller};
+}
 
 /// The sub-pixel precisions S (fractional bits of screen coordinates) the engines
 /// take as a type parameter, re-exported from `fixed` so that a user need not

@@ -8,12 +8,14 @@
 
 pub(crate) mod edge;
 mod walk;
+mod xor;
 
 use embedded_graphics_core::pixelcolor::PixelColor;
 use fixed::types::extra::LeEqU32;
 
 pub use edge::EdgeTable;
 pub(crate) use walk::{Crossing, PolygonWalker};
+pub use xor::{prefix_xor, CodeRow, XorFiller};
 
 use crate::{Error, ScreenPoint, Span, SpanSink};
 

@@ -12,7 +12,7 @@ pub use row::{prefix_xor, CodeRow};
 
 use fixed::types::extra::LeEqU32;
 
-use crate::scan::{PolygonWalker, RowRuns};
+use super::{PolygonWalker, RowRuns};
 use crate::{Error, ScreenPoint, SpanSink};
 
 /// An even-odd polygon filler that uses a modulo-2 code row instead of sorted
