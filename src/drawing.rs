@@ -63,7 +63,9 @@ pub struct Drawing<
 > {
     baked: Option<Baked<'m>>,
     /// How the frame is drawn: [`Settings::default`] is dashed hidden lines, culling
-    /// on for a closed mesh, the paper's pattern.
+    /// on for a closed mesh, the paper's pattern. Dashes along the edges
+    /// ([`Dashes::Along`](crate::render::Dashes::Along)) need the dash phases of the
+    /// long form ([`FastWorkspace::phases`]): here they are `CapacityExceeded`.
     pub settings: Settings,
     /// The line colour (faces, in the surface modes, are dithered against it).
     pub palette: MonoPalette,
