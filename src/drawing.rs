@@ -182,7 +182,7 @@ impl<
         let planes = self.planes.get(..baked.mesh.face_count()).unwrap_or(&[]);
         let edges = self.edges.get(..baked.edges).unwrap_or(&[]);
         let mesh = BakedMesh::baked_here(baked.mesh, planes, edges);
-        let sink = FillSolid::new(target).map_err(Error::widen)?;
+        let mut sink = FillSolid::new(target).map_err(Error::widen)?;
         rows.fit(sink.viewport()).map_err(Error::widen)?;
         let (face_links, slopes) = self
             .face_lists
@@ -202,7 +202,6 @@ impl<
             slopes,
             phases: &mut [],
         };
-        let mut sink = sink;
         self.engine.render(
             &mesh,
             camera,

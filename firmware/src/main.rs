@@ -20,6 +20,13 @@ use pbuffer::{packed_len, FillRule, PackedFramebuffer, ScanConverter, ScreenPoin
 
 mod cube;
 
+/// Bytes of the cube's `Drawing` and of its `FrameRows` on this target
+/// (BENCHMARKS.md's figures).
+const BUFFER_BYTES: (usize, usize) = (
+    core::mem::size_of::<pbuffer::Drawing<'static, 8, 6, 12>>(),
+    core::mem::size_of::<pbuffer::FrameRows<128, 64>>(),
+);
+
 type Fb = PackedFramebuffer<128, 64, { packed_len(128, 64) }>;
 type P = ScreenPoint<U4>; // 4 sub-pixel bits: raw = pixels * 16
 
@@ -88,6 +95,11 @@ fn cube_scene(syst: &mut SYST) -> debug::ExitStatus {
                 stats.feature_edges,
                 n,
                 hash
+            );
+            hprintln!(
+                "pbuffer-firmware: cube buffers: Drawing<8, 6, 12> {} bytes, FrameRows<128, 64> {} bytes",
+                BUFFER_BYTES.0,
+                BUFFER_BYTES.1
             );
             if hash == cube::EXPECTED_CUBE {
                 debug::EXIT_SUCCESS

@@ -10,6 +10,7 @@ use pbuffer::subpixel::U4;
 use pbuffer::{packed_len, PackedFramebuffer, Stats, CREASE_DEG};
 
 use host_tests::fast::FastBuffers;
+use host_tests::pipeline::MeshArrays;
 
 type Frame = PackedFramebuffer<128, 64, { packed_len(128, 64) }>;
 
@@ -61,18 +62,11 @@ fn long_form(mesh: Mesh<'_>, camera: &Camera, settings: &Settings, fb: &mut Fram
 }
 
 /// Flat arrays of an OBJ model (f32 positions, indices, face starts).
-fn flat(name: &str) -> (Vec<[f32; 3]>, Vec<u32>, Vec<u32>) {
+fn flat(name: &str) -> MeshArrays {
     let path = host_tests::obj::workspace_root()
         .join("../shared/models")
         .join(name);
-    let data = host_tests::obj::load_obj(&path).expect("model");
-    let vertices = data.vertices.iter().map(|v| v.map(|c| c as f32)).collect();
-    let mut starts = vec![0];
-    let indices: Vec<u32> = data.faces.iter().flatten().copied().collect();
-    for f in &data.faces {
-        starts.push(starts.last().unwrap() + f.len() as u32);
-    }
-    (vertices, indices, starts)
+    MeshArrays::new(&host_tests::obj::load_obj(&path).expect("model"))
 }
 
 #[test]
@@ -104,8 +98,8 @@ fn the_cube_drawn_short_is_the_cube_drawn_long() {
 /// views clip faces (the clipped-corner pool); every mode.
 #[test]
 fn suzanne_drawn_short_is_suzanne_drawn_long_in_every_mode_and_near_view() {
-    let (v, i, f) = flat("suzanne.obj");
-    let mesh = Mesh::new(&v, &i, &f).unwrap();
+    let arrays = flat("suzanne.obj");
+    let mesh = Mesh::new(&arrays.vertices, &arrays.indices, &arrays.offsets).unwrap();
     // Room for more vertices, faces and edges than suzanne has (507, 500, 1005).
     let mut drawing = Box::new(Drawing::<600, 550, 1100, 128, 128>::new());
     drawing.bake(mesh).unwrap();

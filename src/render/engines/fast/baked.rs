@@ -125,7 +125,7 @@ impl<'a> BakedMesh<'a> {
             if single != (e.kind == EdgeKind::Boundary) {
                 return bad(EdgeProblem::FacesDisagree);
             }
-            closed &= e.kind != EdgeKind::Boundary && e.kind != EdgeKind::NonManifold;
+            closed &= closes(e);
             let labelled = e.hole != NO_HOLE;
             if usize::from(e.hole) >= MAX_HOLES && labelled
                 || labelled != (e.kind == EdgeKind::Boundary && holes_labelled)
@@ -148,9 +148,7 @@ impl<'a> BakedMesh<'a> {
         planes: &'a [FacePlane],
         edges: &'a [CompactEdge],
     ) -> Self {
-        let closed = edges
-            .iter()
-            .all(|e| e.kind != EdgeKind::Boundary && e.kind != EdgeKind::NonManifold);
+        let closed = edges.iter().all(closes);
         Self {
             mesh,
             planes,
@@ -178,6 +176,11 @@ impl<'a> BakedMesh<'a> {
     pub fn is_closed(&self) -> bool {
         self.closed
     }
+}
+
+/// Is the edge used by exactly two faces (so that it keeps the mesh closed)?
+fn closes(e: &CompactEdge) -> bool {
+    e.kind != EdgeKind::Boundary && e.kind != EdgeKind::NonManifold
 }
 
 fn check_counts(mesh: &Mesh<'_>) -> Result<(), Error> {
