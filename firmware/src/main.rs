@@ -18,7 +18,7 @@ use panic_semihosting as _;
 use pbuffer::subpixel::U4;
 use pbuffer::{packed_len, FillRule, PackedFramebuffer, ScanConverter, ScreenPoint};
 
-mod cube;
+use pbuffer_firmware::cube;
 
 /// Bytes of the cube's `Drawing` and of its `FrameRows` on this target
 /// (BENCHMARKS.md's figures).

@@ -1,6 +1,6 @@
-//! The firmware examples' scene code on the host: `examples/embedded`'s `scenes` and
-//! `instrument` modules, included by path, so the host draws the firmware's frames with
-//! the very same code; and [`Demo`], the instrument-panel demo ready to draw (the
+//! The firmware examples' scene code on the host: the `pbuffer-scenes` crate's `scenes`
+//! and `instrument` modules (`examples/scenes`, which the firmware builds too), so the
+//! host draws the firmware's frames with the very same code; and [`Demo`], the instrument-panel demo ready to draw (the
 //! bracket's fast-engine constants made here as build.rs makes them), for the frame-hash
 //! test, the `instrument` PNG writer and the `instrument-window` simulator window.
 
@@ -9,13 +9,7 @@ use pbuffer::render::{BakedMesh, CompactEdge, FacePlane};
 
 use crate::cli::Look;
 
-// The firmware's own file: its buffers have a `const fn new` (for `static`s), no `Default`.
-#[allow(dead_code, missing_docs, clippy::new_without_default)]
-#[path = "../../examples/embedded/src/scenes.rs"]
-pub mod scenes;
-
-#[path = "../../examples/embedded/src/instrument.rs"]
-pub mod instrument;
+pub use pbuffer_scenes::{instrument, scenes};
 
 use instrument::Frame;
 use scenes::{panel, PanelFastBuffers, PanelFastEngine};

@@ -2,8 +2,7 @@
 //! firmware checks on the emulated Cortex-M4 (`scripts/thumb-check`), so a run there
 //! that passes proves the two produce the same bits.
 
-#[path = "../../firmware/src/cube.rs"]
-mod cube;
+use pbuffer_firmware::cube;
 
 #[test]
 fn firmware_cube_hash_matches_the_host() {

@@ -1,7 +1,7 @@
 //! The firmware examples' frames, rendered on the host with the same code: the scene,
-//! engine and baseline modules of `examples/embedded` are included here by path,
-//! suzanne is parsed by the same converter (`examples/embedded/obj.rs`) that the
-//! firmware's build.rs runs, and the fast engine's constants and planarity bits are
+//! engine and baseline modules are the `pbuffer-scenes` crate's (`examples/scenes`,
+//! which the firmware builds too), suzanne is parsed by the same converter
+//! (`pbuffer_scenes::obj`) that the firmware's build.rs runs, and the fast engine's constants and planarity bits are
 //! made as build.rs makes them (`BakedMesh::bake`, `pbuffer::order::planar_faces`, here
 //! at run time). The instrument-panel demo's frames come from the same `instrument`
 //! module through `host_tests::firmware`. Prints one line per frame,
@@ -13,18 +13,7 @@
 //! which `scripts/firmware` compares with the lines the firmware prints under QEMU
 //! (any difference fails it). Writes nothing to disk.
 
-#[allow(dead_code)]
-#[path = "../../examples/embedded/obj.rs"]
-mod obj;
-#[allow(dead_code)]
-#[path = "../../examples/embedded/src/painter.rs"]
-mod painter;
-#[allow(dead_code)]
-#[path = "../../examples/embedded/src/plain.rs"]
-mod plain;
-#[allow(dead_code)]
-#[path = "../../examples/embedded/src/scenes.rs"]
-mod scenes;
+use pbuffer_scenes::{obj, painter, plain, scenes};
 
 use host_tests::firmware::{instrument, Demo};
 use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};

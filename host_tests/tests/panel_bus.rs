@@ -1,5 +1,5 @@
 //! The driver examples (`panel-ssd1306`, `suzanne-sharp`) on the host: the same code
-//! (`examples/embedded/src/panels.rs` and `scenes.rs`, included by path) drives the
+//! (`pbuffer_scenes::panels` and `scenes`, the firmware's crate) drives the
 //! `ssd1306` and `sharp-memory-display` crates, and the bytes they write to the bus are
 //! checked to be exactly the frame, the frame the host renders into pbuffer's
 //! `PackedFramebuffer` for the same view (the `panel` and `suzanne` examples' frames,
@@ -22,15 +22,7 @@
 //! flush, as the firmware hashes them), which `scripts/firmware` compares with the
 //! firmware's lines.
 
-#[allow(dead_code)]
-#[path = "../../examples/embedded/obj.rs"]
-mod obj;
-#[allow(dead_code)]
-#[path = "../../examples/embedded/src/panels.rs"]
-mod panels;
-#[allow(dead_code)]
-#[path = "../../examples/embedded/src/scenes.rs"]
-mod scenes;
+use pbuffer_scenes::{obj, panels, scenes};
 
 use std::cell::RefCell;
 use std::panic::{catch_unwind, AssertUnwindSafe};

@@ -1,4 +1,4 @@
-//! `instrument-window`: the instrument-panel demo (`examples/embedded/src/instrument.rs`,
+//! `instrument-window`: the instrument-panel demo (`examples/scenes/src/instrument.rs`,
 //! the bracket turning beside its label and turn angle, 128 x 64, 1 bpp) animated in an
 //! embedded-graphics-simulator window (SDL2), each frame drawn by the firmware's code.
 //!

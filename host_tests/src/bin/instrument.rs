@@ -1,4 +1,4 @@
-//! `instrument`: frames of the instrument-panel demo (`examples/embedded/src/instrument.rs`,
+//! `instrument`: frames of the instrument-panel demo (`examples/scenes/src/instrument.rs`,
 //! the bracket turning beside its label and turn angle, 128 x 64, 1 bpp) drawn on the host
 //! with the firmware's code, written side by side as one PNG.
 //!

@@ -1,8 +1,8 @@
 //! `bench --firmware [--m4 FILE]`: the firmware examples' frames counted on the host
 //! (callgrind), set against the counts the same frames took on the emulated Cortex-M4.
 //!
-//! The scene, engine and baseline modules of `examples/embedded` are included by path
-//! (as `host_tests/tests/firmware_examples.rs` does), and each frame's measured region
+//! The scene, engine and baseline modules are the firmware's own (`pbuffer-scenes`,
+//! as in `host_tests/tests/firmware_examples.rs`), and each frame's measured region
 //! is what the firmware's SysTick counter brackets: clear + transform + draw (the
 //! mesh, its edge list, planarity bits and the fast engine's baked constants are made
 //! before, as the firmware has them in flash). `FILE` is the `frame EXAMPLE N hash=HEX instructions=COUNT` lines of
@@ -19,8 +19,8 @@ use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
 use pbuffer::render::{BakedMesh, CompactEdge, FacePlane, FastRenderer, FastWorkspace};
 use pbuffer::{packed_len, CodeFillRenderer, CodeWorkspace, DrawMode, PackedFramebuffer, Pattern};
 
-use crate::scenes::{self, fnv1a64, panel, suzanne, View};
-use crate::{obj, painter, plain};
+use pbuffer_scenes::scenes::{self, fnv1a64, panel, suzanne, View};
+use pbuffer_scenes::{obj, painter, plain};
 
 /// The examples in `scripts/firmware`'s order.
 const EXAMPLES: [&str; 9] = [

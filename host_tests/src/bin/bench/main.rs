@@ -37,21 +37,6 @@
 mod fills_report;
 mod firmware;
 
-// The firmware examples' modules, for `--firmware` (they name each other from the
-// crate root, as in examples/embedded).
-#[allow(dead_code)]
-#[path = "../../../../examples/embedded/obj.rs"]
-mod obj;
-#[allow(dead_code)]
-#[path = "../../../../examples/embedded/src/painter.rs"]
-mod painter;
-#[allow(dead_code)]
-#[path = "../../../../examples/embedded/src/plain.rs"]
-mod plain;
-#[allow(dead_code)]
-#[path = "../../../../examples/embedded/src/scenes.rs"]
-mod scenes;
-
 use std::convert::Infallible;
 use std::process::ExitCode;
 

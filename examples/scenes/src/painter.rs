@@ -3,7 +3,7 @@
 //! each face filled with the background colour as fan `Triangle`s and its outline
 //! stroked with the line colour (`Line`s, so quads show no diagonal). Hidden lines
 //! are simply painted over: no dashes. Faces not wholly within near..far are skipped.
-//! Shared with the host test by path.
+//! Shared with the host test through this crate.
 
 use embedded_graphics::pixelcolor::BinaryColor;
 use embedded_graphics::prelude::*;

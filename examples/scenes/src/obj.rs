@@ -1,6 +1,7 @@
-//! The OBJ converter of the firmware examples, used by `build.rs` (which turns a model
-//! into const arrays) and by the host test `host_tests/tests/firmware_examples.rs`
-//! (which parses the same file at run time), so both see the same `f32` bits.
+//! The OBJ converter of the firmware examples, used by `examples/embedded/build.rs`
+//! (which turns a model into const arrays) and by the host test
+//! `host_tests/tests/firmware_examples.rs` (which parses the same file at run time), so
+//! both see the same `f32` bits.
 //!
 //! Parsing follows ../shared/CONVENTIONS.md "Meshes": `v x y z` and `f a b c ...`
 //! (1-based, negative counts back from the last `v`, `a/b/c` takes the first number);
@@ -8,6 +9,8 @@
 //! anything malformed is an error naming the line.
 
 use std::collections::BTreeSet;
+use std::prelude::rust_2021::*;
+use std::{format, vec};
 
 /// A mesh in the library's layout: positions, CSR face indices and offsets.
 #[derive(Debug, Clone, Default, PartialEq)]

@@ -4,7 +4,7 @@
 //! functions over their bounding box, feature edges drawn with an `f32` DDA, each pixel
 //! through the paper's test, the pattern looked up per pixel. The view-independent
 //! edge list comes from the library's `EdgeAdjacency` (built once at boot, as the host
-//! baseline builds its own once per mesh). Shared with the host test by path.
+//! baseline builds its own once per mesh). Shared with the host test through this crate.
 
 use pbuffer::mesh::{Mesh, MeshEdge};
 use pbuffer::Pattern;

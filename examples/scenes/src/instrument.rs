@@ -20,7 +20,7 @@ use micromath::F32Ext;
 use pbuffer::render::BakedMesh;
 use pbuffer::{packed_len, DrawMode, Error, PackedFramebuffer, Span, SpanSink, Stats, Viewport};
 
-use super::scenes::{self, PanelFastBuffers, PanelFastEngine, View};
+use crate::scenes::{self, PanelFastBuffers, PanelFastEngine, View};
 
 /// Display width in pixels.
 pub const WIDTH: usize = 128;
