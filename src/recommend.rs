@@ -2,7 +2,7 @@
 //! surface-code width that keep a frame's error under a stated bound.
 //!
 //! The formulas (the `report` command of the host crate checks them on every scene
-//! it renders, and `host_tests/tests/recommend.rs` asserts them):
+//! it renders, and `host_tests/tests/tools/recommend.rs` asserts them):
 //!
 //! * **Sub-pixel bits.** A vertex is rounded to the nearest point of the `1/2^S`
 //!   grid, so each coordinate moves by at most `2^-(S+1)` px and the vertex by at

@@ -1,7 +1,7 @@
 //! A cube with dashed hidden lines on 128x64, drawn with the short API: the lines of
-//! the crate doctest that the README quotes (`host_tests/tests/short_api.rs` checks
+//! the crate doctest that the README quotes (`host_tests/tests/frames/short_api.rs` checks
 //! that they are the same lines). Shared by the firmware (`main.rs`) and the host test
-//! `host_tests/tests/firmware_cube.rs`, which both check `EXPECTED_CUBE`, so the M4
+//! `host_tests/tests/firmware/firmware_cube.rs`, which both check `EXPECTED_CUBE`, so the M4
 //! and the host are held to the same bits.
 
 use pbuffer::prelude::*;

@@ -5,7 +5,7 @@
 //! angle as a number, and a bar that fills as the part turns.
 //!
 //! `no_std`, shared by the firmware example `instrument` and the host (the frame-hash
-//! test `host_tests/tests/firmware_examples.rs`, the `instrument` PNG writer and the
+//! test `host_tests/tests/firmware/firmware_examples.rs`, the `instrument` PNG writer and the
 //! simulator window `instrument-window` reach it through `host_tests::firmware`), so
 //! every one of them draws the very same frames with the very same code.
 

@@ -1,6 +1,6 @@
 //! The OBJ converter of the firmware examples, used by `examples/embedded/build.rs`
 //! (which turns a model into const arrays) and by the host test
-//! `host_tests/tests/firmware_examples.rs` (which parses the same file at run time), so
+//! `host_tests/tests/firmware/firmware_examples.rs` (which parses the same file at run time), so
 //! both see the same `f32` bits.
 //!
 //! Parsing follows ../shared/CONVENTIONS.md "Meshes": `v x y z` and `f a b c ...`

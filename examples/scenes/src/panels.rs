@@ -1,7 +1,7 @@
 //! The frames on real panel drivers (`panel-ssd1306`, `suzanne-sharp`): the `ssd1306`
 //! crate's buffered `DrawTarget` (128 x 64, I2C) and the `sharp-memory-display` crate's
 //! (400 x 240, LS027B7DH01, SPI). `no_std`; shared with the host test
-//! `host_tests/tests/panel_bus.rs` (through this crate), so the host drives the very
+//! `host_tests/tests/firmware/panel_bus.rs` (through this crate), so the host drives the very
 //! same code against `embedded-hal-mock` buses.
 //!
 //! A frame reaches the driver's buffer in one of three ways, measured by the examples:

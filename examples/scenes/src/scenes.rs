@@ -1,6 +1,6 @@
 //! The scenes of the firmware examples: cameras per frame, the bracket mesh, the
 //! renderer configuration and the one call that draws a frame. `no_std`; shared with
-//! the host test `host_tests/tests/firmware_examples.rs` (through this crate), so
+//! the host test `host_tests/tests/firmware/firmware_examples.rs` (through this crate), so
 //! the host renders the very same frames with the very same code.
 
 use core::convert::Infallible;

@@ -28,7 +28,7 @@ pub(crate) struct FaceView<'a> {
 /// fan triangles (more than three corners, not planar by [`is_planar`])? Only where
 /// the plane leaves some corner ([`bend`]) by more than the rounding and more than the
 /// plane's change of depth over one pixel. A smaller bend is left to the plane, a
-/// trade measured in `host_tests/tests/non_planar_faces.rs`: on the twisted quads
+/// trade measured in `host_tests/tests/frames/non_planar_faces.rs`: on the twisted quads
 /// 1 + 171 depth-order and far pixels of 378,765 against 2 + 157 with fan depth for
 /// every face not planar, on suzanne 2 + 0 against 1 + 0, and the Z-buffer draws
 /// suzanne in 13 % fewer instructions. The (f64) planarity test, asked last, keeps a

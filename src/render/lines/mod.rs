@@ -493,7 +493,7 @@ pub(crate) fn margin(plane: &DepthPlane, px: &EdgePixel, reach: u64) -> u32 {
 /// hiding face. A face that covers the edge point: only the point's snapping is
 /// uncertain. A face extended to the point: a grazing face beside a silhouette,
 /// extended, passes just in front of its edge. Both were chosen against the f64
-/// reference (`host_tests/tests/pipeline_vs_reference.rs`).
+/// reference (`host_tests/tests/frames/pipeline_vs_reference.rs`).
 pub(crate) const REACH_COVERING: u64 = 1;
 const REACH_EXTENDED: u64 = 32;
 

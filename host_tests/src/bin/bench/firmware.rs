@@ -2,7 +2,7 @@
 //! (callgrind), set against the counts the same frames took on the emulated Cortex-M4.
 //!
 //! The scene, engine and baseline modules are the firmware's own (`pbuffer-scenes`,
-//! as in `host_tests/tests/firmware_examples.rs`), and each frame's measured region
+//! as in `host_tests/tests/firmware/firmware_examples.rs`), and each frame's measured region
 //! is what the firmware's SysTick counter brackets: clear + transform + draw (the
 //! mesh, its edge list, planarity bits and the fast engine's baked constants are made
 //! before, as the firmware has them in flash). `FILE` is the `frame EXAMPLE N hash=HEX instructions=COUNT` lines of

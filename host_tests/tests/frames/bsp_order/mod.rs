@@ -3,7 +3,7 @@
 //! the fragments it meets. Random triangle soups (seeded), perspective and
 //! orthographic eyes; the fragments tile their source faces and lie in their planes.
 //! Plus the test models: fragment counts, depth and build time, printed
-//! (`cargo test --release -p host_tests --test bsp_order -- --nocapture`).
+//! (`cargo test --release -p host_tests --test frames bsp_order:: -- --nocapture`).
 mod geometry;
 mod rays;
 mod scenes;

@@ -3,7 +3,7 @@
 //! differences away from edges (with wrong faces and depth-order errors) at most
 //! 0.05 % of the covered pixels away from edges; line pixels misclassified at most
 //! 0.5 %; visible and hidden line length missing at most 1 % each.
-//! `cargo test --release -p host_tests --test fast_vs_reference -- --nocapture`
+//! `cargo test --release -p host_tests --test frames fast_vs_reference:: -- --nocapture`
 //! prints the table.
 
 use host_tests::frame::{CameraSpec, EngineSpec, ModeSpec, ProjectionSpec, RenderSpec};

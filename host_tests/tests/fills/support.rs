@@ -1,6 +1,5 @@
-//! Shared helpers of the rasterizer test suites (`mod support;` in each test file).
-//! Compiled as its own (empty) test target too.
-#![allow(dead_code)] // each test file uses a different subset of the helpers
+//! Shared helpers of the 2-D rasterizer suites of this binary (`use crate::support;`).
+#![allow(dead_code)] // each suite uses a different subset of the helpers
 
 use std::convert::Infallible;
 

@@ -8,7 +8,7 @@
 //! by less than a sixteenth of a pixel's depth change ... tie, and the lower face
 //! index wins").
 
-mod stab;
+use crate::stab;
 
 use host_tests::frame::{CameraSpec, EngineSpec, MeshData};
 use host_tests::shapes;

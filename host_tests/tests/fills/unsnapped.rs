@@ -8,7 +8,7 @@
 //! positions moves every point of every edge by at most d, and a pixel centre changes
 //! sides only when an edge passes over it; so a differing centre is within d of a true edge.
 
-mod support;
+use crate::support;
 
 use fixed::types::extra::{LeEqU32, U0, U12, U2, U4, U8};
 use host_tests::random::{unsnapped_polygon, RawPolygon, Rng, Shape};

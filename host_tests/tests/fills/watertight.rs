@@ -4,7 +4,7 @@
 //! and with the XOR filler, on piglit-style triangle fans (vertices stepping 0..1 px along
 //! a circle, which may be larger than the screen) and on jittered triangulated grids.
 
-mod support;
+use crate::support;
 
 use host_tests::random::{fan, grid, Mesh, RawPolygon, Rng};
 use host_tests::reference::{winding_map, Polygon, Rule};

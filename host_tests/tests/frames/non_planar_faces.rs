@@ -43,7 +43,7 @@
 //! edge-on, turns away within the half pixel to the edge point. Its line pixels are
 //! now counted against the reference here as well.
 //!
-//! `cargo test --release -p host_tests --test non_planar_faces -- --nocapture`
+//! `cargo test --release -p host_tests --test frames non_planar_faces:: -- --nocapture`
 
 use std::path::PathBuf;
 

@@ -1,7 +1,7 @@
 //! The modulo-2 edge-flag filler (`XorFiller`) draws exactly the pixels the scan converter
 //! draws under the even-odd rule, and both equal the f64 reference, for random polygons.
 
-mod support;
+use crate::support;
 
 use host_tests::random::{polygon, Rng, Shape};
 use host_tests::reference::{Polygon, Rule};

@@ -4,7 +4,7 @@ use host_tests::frame::MeshData;
 use host_tests::random::Rng;
 use pbuffer::Mesh;
 
-use crate::geometry::{add, norm, pos, sub};
+use super::geometry::{add, norm, pos, sub};
 
 pub(super) fn random_direction(rng: &mut Rng) -> [f64; 3] {
     loop {

@@ -5,7 +5,7 @@
 //! or zoomed so the anchor end is clipped far off screen. The `--lines` image
 //! still has every hidden pixel (before the dashes), and a frame dashed by the
 //! screen pattern does not pass the test.
-//! `cargo test --release -p host_tests --test dashes_along`.
+//! `cargo test --release -p host_tests --test frames dashes_along::`.
 
 use host_tests::frame::{
     CameraSpec, EngineSpec, Frame, MeshData, ModeSpec, ProjectionSpec, RenderSpec,

@@ -2,7 +2,7 @@
 //! derived in the comments from the rule of CONVENTIONS.md (a centre counts iff the centre
 //! moved by (+e, +e^2) is inside) and is also checked against the f64 reference.
 
-mod support;
+use crate::support;
 
 use embedded_graphics::pixelcolor::BinaryColor;
 use fixed::types::extra::{U0, U12, U4, U8};

@@ -5,7 +5,7 @@
 //! The counting sink also asserts that no span leaves the viewport and that no pixel is
 //! written twice by one polygon.
 
-mod support;
+use crate::support;
 
 use host_tests::random::{far_polygon, polygon, RawPolygon, Rng, Shape};
 use host_tests::reference::{Polygon, Rule};

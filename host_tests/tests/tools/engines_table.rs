@@ -1,7 +1,7 @@
 //! Every engine on the quick scenes of `report -- engines`, against the f64
 //! reference: no engine breaks (far id differences, holes, wrong faces, depth-order
 //! errors) where it is meant to work, and the painter's documented failure on cyclic
-//! overlap is real. `cargo test --release -p host_tests --test engines_table --
+//! overlap is real. `cargo test --release -p host_tests --test tools engines_table:: --
 //! --nocapture` prints the table.
 
 use host_tests::frame::EngineSpec;

@@ -12,7 +12,7 @@
 //! frame's hash is printed (`HASH ...`) for `scripts/debug-release-check`, which
 //! diffs a debug run (overflow checks on) against a release run.
 
-mod stab;
+use crate::stab;
 
 use host_tests::frame::MeshData;
 use host_tests::random::Rng;

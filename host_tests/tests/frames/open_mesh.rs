@@ -6,7 +6,7 @@
 //! until a steep line beside an empty column was taken as an outline there).
 //! Also: the fast engine's skipping of back faces away from the holes changes no
 //! pixel.
-//! `cargo test --release -p host_tests --test open_mesh -- --nocapture`.
+//! `cargo test --release -p host_tests --test frames open_mesh:: -- --nocapture`.
 
 use host_tests::fast::with_every_back_face;
 use host_tests::frame::{CameraSpec, CullSpec, EngineSpec, ModeSpec, ProjectionSpec, RenderSpec};

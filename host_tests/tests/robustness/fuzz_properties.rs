@@ -13,11 +13,11 @@
 //!   capacities, deliberately small here so that both occur);
 //! - code fill's two row representations give the same picture.
 //!
-//! Case counts are fixed; `cargo test --release -p host_tests --test fuzz_properties
+//! Case counts are fixed; `cargo test --release -p host_tests --test robustness fuzz_properties::
 //! -- --nocapture` prints them with the CPU time. The 2-D fillers and the GF(2)
 //! coding schemes are fuzzed in `fuzz_fillers.rs` and `fuzz_codes.rs`.
 
-mod fuzzgen;
+use crate::fuzzgen;
 
 use std::collections::BTreeMap;
 use std::panic::{catch_unwind, AssertUnwindSafe};

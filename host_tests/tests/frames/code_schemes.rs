@@ -304,7 +304,7 @@ fn cyclic_overlap_has_no_depth_levels_for_scheme_2_but_scheme_1_needs_none() {
 /// be set up for the fitted view, the width and table it needs, or the condition it
 /// breaks; a frame that is drawn must be the Z-buffer's. Minutes on the larger models
 /// (the scheme-1 search on graphs of hundreds of paths), so run by hand:
-/// `cargo test --release -p host_tests --test code_schemes models_report -- --ignored --nocapture`
+/// `cargo test --release -p host_tests --test frames code_schemes::models_report -- --ignored --nocapture`
 #[test]
 #[ignore]
 fn models_report() {

@@ -4,7 +4,7 @@
 //! model at views from above, from the front and orthographic from the side, in
 //! the fast engine and an exact one. Any weld rule the two read differently (as
 //! `-0.0` against `0.0` once did on the teapot's seams) shows as a count that
-//! differs by more than the few faces that f32 input turns edge-on. `cargo test --release -p host_tests --test feature_edges -- --nocapture`.
+//! differs by more than the few faces that f32 input turns edge-on. `cargo test --release -p host_tests --test frames feature_edges:: -- --nocapture`.
 
 use std::path::PathBuf;
 

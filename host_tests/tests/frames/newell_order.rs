@@ -7,7 +7,7 @@
 //! within the misclassified / missing limits. Each scene runs as a full frame and in
 //! 8-row bands.
 //! One report line per scene, plus the sort's figures:
-//! `cargo test --release -p host_tests --test newell_order -- --nocapture`.
+//! `cargo test --release -p host_tests --test frames newell_order:: -- --nocapture`.
 
 use std::path::PathBuf;
 use std::time::Instant;

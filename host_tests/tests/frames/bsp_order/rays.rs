@@ -3,7 +3,7 @@
 use pbuffer::order::BspTree;
 use pbuffer::Mesh;
 
-use crate::geometry::{cross, dot, pos, sub};
+use super::geometry::{cross, dot, pos, sub};
 
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) enum Hit {

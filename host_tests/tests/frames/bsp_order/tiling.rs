@@ -5,7 +5,7 @@ use std::collections::HashMap;
 use pbuffer::order::{BspTree, PLANE_TOLERANCE};
 use pbuffer::Mesh;
 
-use crate::geometry::{add, area_vector, dot, norm, plane_of, pos, sub};
+use super::geometry::{add, area_vector, dot, norm, plane_of, pos, sub};
 
 /// Fragments tile their source faces: their area vectors sum to the face's, within
 /// `1e-6` relative or the rounding of split points to f32 (`f32::EPSILON * scale *

@@ -2,7 +2,7 @@
 //! away from edges is the reference's, and each feature edge under a pixel has as many
 //! faces in front of it as the reference counts at that edge's point nearest the
 //! pixel centre (counted tolerance: the library tests the snapped edge point, the
-//! reference the exact one). Report: `cargo test --release -p host_tests --test pick
+//! reference the exact one). Report: `cargo test --release -p host_tests --test frames pick::
 //! -- --nocapture`.
 
 use host_tests::fit::fit_camera;

@@ -1,0 +1,9 @@
+//! The host tools and the library's advice: the `render` command's outputs and flags,
+//! `recommend`, and the engines table of `report`.
+//!
+//! One test binary; each module is one suite (`cargo test -p host_tests --test tools
+//! MODULE::`).
+
+mod engines_table;
+mod recommend;
+mod render_cli;
