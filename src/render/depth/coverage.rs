@@ -1,8 +1,20 @@
-//! The coverage point test of [conventions](crate::conventions) on one projected polygon: the same
-//! answer as the scan converter's rows (`scan::edge`), one point at a time, for the
-//! engines that sample rather than scan (area subdivision, ray casting, picking,
-//! sub-pixel coverage); and [`polygon_contains`], whose boundary counts as inside,
-//! for the line test's fan triangles.
+//! Which points a projected polygon covers. There are exactly two point rules, both
+//! even-odd, and they differ only on the boundary:
+//! - **top-left** ([`covers`], [`covers_centre`]): the fill rule of
+//!   [conventions](crate::conventions), the same answer as the scan converter's rows
+//!   (`scan::edge`) one point at a time. Pixel coverage: whether a face covers a
+//!   sample, for the engines that sample rather than scan (area subdivision, ray
+//!   casting, the painter's, the A-buffer), picking, and the exact engines' line test
+//!   (does a face cover a line pixel's edge point).
+//! - **boundary inside** ([`contains`], [`polygon_contains`]): a point on an edge
+//!   counts as inside. Points on lines and fan selection: which fan triangles of a
+//!   bent face hold a point the face covers (the fan depth at a centre, the line
+//!   test's bend), and the fast engine's exact test of an edge point against a face
+//!   that touches the line's end.
+//!
+//! Beside them, tests of a face's projection as a whole: whether its fragments may
+//! overlap ([`folded`], [`fragments_may_overlap`]) and whether it has an area
+//! ([`has_area`]).
 
 use crate::mesh::Mesh;
 use crate::order::is_planar;
@@ -49,8 +61,6 @@ pub(crate) fn covers(poly: &[ScreenVertex], px: i64, py: i64) -> bool {
     inside
 }
 
-/// Whether the centre of pixel (`i`, `j`) is covered by `poly` at `s` sub-pixel bits.
-// For the sampling engines; only the tests use it so far.
 /// May the fragments of a face with these corners overlap on screen? A depth order
 /// cuts a face that is not planar into fragments (its fan triangles, pieces along
 /// cutting chords); their parity always adds up to the face's even-odd coverage
@@ -141,34 +151,66 @@ pub(crate) fn has_area(poly: &[ScreenVertex]) -> bool {
     })
 }
 
+/// Whether the centre of pixel (`i`, `j`) is covered by `poly` at `s` sub-pixel bits
+/// (the top-left rule, [`covers`]).
 pub(crate) fn covers_centre(poly: &[ScreenVertex], s: u32, i: i64, j: i64) -> bool {
     let h = 1i64 << s;
     covers(poly, (2 * i + 1) * h, (2 * j + 1) * h)
 }
 
-/// True when point (x, y) (half sub-pixel units) is inside `poly` by the even-odd
-/// rule (points exactly on an edge count as inside).
+/// Whether point (`x`, `y`), in half sub-pixel units (`2^-(S+1)` px), is inside
+/// `poly` by the even-odd rule, a point on an edge counting as inside: [`contains`]
+/// of its corners.
+///
+/// Its callers ask about corners in the view volume (within `GUARD_BAND_PX / 2` =
+/// 2^13 px of the origin, and a unit of rounding; S at most 12: 2^26 half-units) and
+/// points in the frame (`MAX_VIEWPORT` = 2^13 px): all of them fit 32 bits as they
+/// are, and their differences too (below 2^28).
 pub(crate) fn polygon_contains(poly: &[ScreenVertex], x: i64, y: i64) -> bool {
-    // Each edge (a, b), the closing one first: the parity does not depend on the
-    // order, and neither does the answer on an edge.
-    let Some(mut a) = poly.last() else {
+    contains(
+        poly.iter()
+            .map(|v| (v.x.wrapping_mul(2), v.y.wrapping_mul(2))),
+        (x as i32, y as i32),
+    )
+}
+
+/// Whether point `(x, y)` is inside the polygon with corners `corners` (closed: the
+/// last joins the first) by the even-odd rule, a point on an edge counting as
+/// inside. Half sub-pixel units (`2^-(S+1)` px), where pixel centres are integers.
+///
+/// Rows are half-open: an edge from `(lx, ly)` to `(hx, hy)`, `ly < hy`, takes part
+/// in rows `ly <= y < hy`. The point is inside when it lies on such an edge, else
+/// when an odd number of them cross its row strictly right of it. So a point on a
+/// horizontal edge, or at a corner with no edge going on to larger y, is decided by
+/// the crossings beside it: inside on a polygon's smallest-y side, outside on its
+/// largest-y side.
+///
+/// 32-bit coordinates and differences, 64-bit products (one multiply on a
+/// Cortex-M4; 64-bit coordinates cost the fast engine's suzanne frame 0.7 %): exact
+/// when every difference of coordinates fits 32 bits, as it does for both callers,
+/// [`polygon_contains`] (below 2^28) and the fast engine (16-bit corners, below
+/// 2^16 half-units, and edge points on its lines, below 2^17).
+pub(crate) fn contains(corners: impl IntoIterator<Item = (i32, i32)>, (x, y): (i32, i32)) -> bool {
+    let mut corners = corners.into_iter();
+    let Some(first) = corners.next() else {
         return false;
     };
+    // Each edge (a, b), the closing one last: the parity does not depend on the
+    // order, and neither does the answer on an edge.
+    let mut a = first;
     let mut inside = false;
-    for b in poly {
-        let (ay, by) = (2 * i64::from(a.y), 2 * i64::from(b.y));
+    for b in corners.chain(core::iter::once(first)) {
+        let ((ax, ay), (bx, by)) = (a, b);
         if (ay <= y) != (by <= y) {
-            let (ax, bx) = (2 * i64::from(a.x), 2 * i64::from(b.x));
             // Orientation of the point against the edge, taken upward.
             let (lx, ly, hx, hy) = if ay < by {
                 (ax, ay, bx, by)
             } else {
                 (bx, by, ax, ay)
             };
-            // Inside the guard band every difference is below 2^28 half-units:
-            // 32-bit factors with a 64-bit product (one multiply on a Cortex-M4).
-            let wide = |a: i64, b: i64| i64::from(a as i32) * i64::from(b as i32);
-            let cross = wide(hx - lx, y - ly) - wide(hy - ly, x - lx);
+            let wide = |a: i32, b: i32| i64::from(a) * i64::from(b);
+            let cross = wide(hx.wrapping_sub(lx), y.wrapping_sub(ly))
+                - wide(hy.wrapping_sub(ly), x.wrapping_sub(lx));
             if cross == 0 {
                 return true;
             }
@@ -187,6 +229,105 @@ mod tests {
 
     fn v(x: i32, y: i32) -> ScreenVertex {
         ScreenVertex { x, y, q: 0 }
+    }
+
+    /// Polygons in half-units: convex both ways round, concave (an L, a notch whose
+    /// corner has no edge going on to larger y, a notch from the other side),
+    /// crossing itself, with edges through lattice points, and a bare segment.
+    const POLYGONS: [&[(i32, i32)]; 9] = [
+        &[(0, 0), (8, 2), (3, 9)],
+        &[(1, 1), (9, 1), (9, 9), (1, 9)],
+        &[(1, 9), (9, 9), (9, 1), (1, 1)],
+        &[(0, 0), (10, 0), (10, 4), (4, 4), (4, 10), (0, 10)],
+        &[(0, 0), (5, 5), (10, 0), (10, 10), (0, 10)],
+        &[(0, 0), (10, 0), (10, 10), (5, 4), (0, 10)],
+        &[(0, 0), (10, 10), (10, 0), (0, 10)],
+        &[(0, 0), (9, 3), (12, 12), (3, 9)],
+        &[(2, 2), (6, 2)],
+    ];
+
+    /// Every lattice point of the polygon's box and two beyond it: the points on
+    /// its edges and corners, inside and outside.
+    fn points(poly: &[(i32, i32)]) -> impl Iterator<Item = (i32, i32)> {
+        let (lo, hi) = poly.iter().fold((i32::MAX, i32::MIN), |(lo, hi), &(x, y)| {
+            (lo.min(x).min(y), hi.max(x).max(y))
+        });
+        (lo - 2..=hi + 2).flat_map(move |y| (lo - 2..=hi + 2).map(move |x| (x, y)))
+    }
+
+    /// The rule of [`contains`] said the plain way: on an edge that takes part in
+    /// the point's row (exactly, in 128 bits) inside, else the parity of the
+    /// crossings right of it (the crossing found by division in `f64`, exact enough
+    /// for these small coordinates: a crossing off the point is at least 1/16 of a
+    /// unit from it).
+    fn reference(poly: &[(i32, i32)], (px, py): (i32, i32)) -> bool {
+        let n = poly.len();
+        let mut crossings = 0;
+        for k in 0..n {
+            let (a, b) = (poly[k], poly[(k + 1) % n]);
+            let ((lx, ly), (hx, hy)) = if a.1 < b.1 { (a, b) } else { (b, a) };
+            if !(ly <= py && py < hy) {
+                continue;
+            }
+            let on = i128::from(hx - lx) * i128::from(py - ly)
+                == i128::from(hy - ly) * i128::from(px - lx);
+            if on {
+                return true;
+            }
+            let f = f64::from;
+            let at = f(lx) + f(hx - lx) * f(py - ly) / f(hy - ly);
+            crossings += usize::from(at > f(px));
+        }
+        crossings % 2 == 1
+    }
+
+    #[test]
+    fn contains_agrees_with_the_reference() {
+        for poly in POLYGONS {
+            for p in points(poly) {
+                assert_eq!(
+                    contains(poly.iter().copied(), p),
+                    reference(poly, p),
+                    "{poly:?} {p:?}"
+                );
+            }
+        }
+        assert!(!contains([], (0, 0)));
+    }
+
+    /// Scaled to the callers' ranges (the fast engine's 16-bit corners, the view
+    /// volume's 2^26 half-units around the origin), every answer stays the same:
+    /// the 32-bit products are exact there.
+    #[test]
+    fn contains_is_exact_at_the_callers_bounds() {
+        for (scale, offset) in [(1 << 12, -(1 << 15)), (1 << 23, -(1 << 26))] {
+            let big = |(x, y): (i32, i32)| (x * scale + offset, y * scale + offset);
+            for poly in POLYGONS {
+                for p in points(poly) {
+                    assert_eq!(
+                        contains(poly.iter().map(|&c| big(c)), big(p)),
+                        reference(poly, p),
+                        "{poly:?} {p:?} x {scale}"
+                    );
+                }
+            }
+        }
+    }
+
+    /// A point on an edge is inside, but where rows are half-open: on the square's
+    /// largest-y side (its edge and corners there) it is outside.
+    #[test]
+    fn points_on_edges_are_inside_but_on_the_largest_y_side() {
+        let square = [v(1, 1), v(5, 1), v(5, 5), v(1, 5)];
+        for k in 2..=10 {
+            assert_eq!(polygon_contains(&square, 2, k), k < 10, "left ({k})");
+            assert_eq!(polygon_contains(&square, 10, k), k < 10, "right ({k})");
+            assert!(polygon_contains(&square, k, 2), "top ({k})");
+            assert!(!polygon_contains(&square, k, 10), "bottom ({k})");
+        }
+        assert!(polygon_contains(&square, 6, 6));
+        assert!(!polygon_contains(&square, 1, 6));
+        assert!(!polygon_contains(&square, 11, 6));
     }
 
     /// The square [1, 3] x [1, 3] px at S = 0 covers the centres of pixels 1 and 2 in

@@ -169,7 +169,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                     if !touches {
                         Beside::Apart
                     } else if corners.iter().all(|v| corner(v).inside())
-                        && !covers(corners.iter().map(|v| corner(v).half()), e)
+                        && !contains(corners.iter().map(|v| corner(v).half()), e)
                     {
                         Beside::Misses
                     } else {

@@ -82,6 +82,7 @@ use crate::camera::{dot, Camera};
 use crate::error::need;
 use crate::mesh::{EdgeKind, Viewpoint};
 use crate::render::compose::{FrameProbe, Palette};
+use crate::render::depth::coverage::contains;
 use crate::render::{Cull, Settings, Stats};
 use crate::{Error, SpanSink, Viewport};
 use active::ActiveFacets;
@@ -92,7 +93,7 @@ use depth_row::clear_row;
 use facets::{facet, ClipPolygon, CornerSource, Corners, Facet};
 use holes::HoleBoxes;
 use lines::{line_row, ActiveLine, Beside, FaceSlopes, GapMask, LineTest, NoGaps};
-use polygon::{convex, covers, folds, turns_away};
+use polygon::{convex, folds, turns_away};
 use row_out::{emit_row, Shades};
 use view::{guard_px, ScreenMap};
 

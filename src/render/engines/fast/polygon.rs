@@ -1,37 +1,8 @@
 //! Screen-space tests of a face's snapped corners: which way a corner turns,
-//! whether a quad is convex or a fan folds over, whether a polygon covers a point.
+//! whether a quad is convex or a fan folds over. (Whether a polygon holds a point
+//! is the shared `render::depth::coverage::contains`.)
 
 use super::view::FastVertex;
-
-/// Is point `e` (half-units) inside the polygon with corners `corners` (half-units)
-/// by the even-odd rule, a point on an edge counting as inside?
-pub(super) fn covers(mut corners: impl Iterator<Item = (i32, i32)> + Clone, e: (i32, i32)) -> bool {
-    let Some(first) = corners.next() else {
-        return false;
-    };
-    let (x, y) = (i64::from(e.0), i64::from(e.1));
-    let mut inside = false;
-    let mut a = first;
-    for b in corners.chain(core::iter::once(first)) {
-        let (ay, by) = (i64::from(a.1), i64::from(b.1));
-        if (ay <= y) != (by <= y) {
-            let (lx, ly, hx, hy) = if ay < by {
-                (i64::from(a.0), ay, i64::from(b.0), by)
-            } else {
-                (i64::from(b.0), by, i64::from(a.0), ay)
-            };
-            let cross = (hx - lx) * (y - ly) - (hy - ly) * (x - lx);
-            if cross == 0 {
-                return true;
-            }
-            if cross > 0 {
-                inside = !inside;
-            }
-        }
-        a = b;
-    }
-    inside
-}
 
 /// Is the polygon `pts` strictly convex on screen: do all its corners turn the
 /// same way, none straight? Then each of its diagonals lies inside it and splits
