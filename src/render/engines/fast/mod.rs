@@ -231,6 +231,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
     }
 }
 
+mod buckets;
 mod frame;
 #[cfg(test)]
 mod tests;
