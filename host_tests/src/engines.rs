@@ -11,8 +11,8 @@ use pbuffer::MonoPalette;
 
 use crate::bsp::{with_bsp, DepthRanks};
 use crate::frame::{CameraSpec, EngineSpec, Frame, MeshData, RenderSpec};
-use crate::pipeline::{EDGES, POLY};
 use crate::setup::{IdBuffers, Measured, Scene, SceneStorage};
+use crate::setup::{EDGES, POLY};
 
 /// `painter` (faces by farthest depth) and `bsp` (the tree's fragments, walked per
 /// view), both painted far to near with no depth test.

@@ -7,7 +7,7 @@
 use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
 use pbuffer::render::{BakedMesh, CompactEdge, FacePlane};
 
-use crate::cli::Look;
+use crate::image::Look;
 
 pub use pbuffer_scenes::{instrument, scenes};
 

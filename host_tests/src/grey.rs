@@ -12,9 +12,9 @@ use pbuffer::render::Depth;
 use pbuffer::{GreyPalette, GreyShades, Span, SpanSink, Viewport, ZBufferRenderer};
 
 use crate::frame::{CameraSpec, MeshData, ProjectionSpec, RenderSpec};
-use crate::pipeline::{EDGES, POLY};
 use crate::reference3d::RefFrame;
 use crate::setup::{IdBuffers, Scene, SceneStorage};
+use crate::setup::{EDGES, POLY};
 
 /// The palette of the host's grey frames: black background, white lines, faces
 /// from level 48 (edge-on) to 176 (facing the eye).

@@ -9,6 +9,9 @@
 //! Set pixels are drawn black on white (ink on paper), the way the line drawings of the
 //! project are meant to look.
 
+mod look;
+pub use look::Look;
+
 use std::fs::File;
 use std::io::{self, BufWriter};
 use std::path::Path;

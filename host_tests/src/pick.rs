@@ -4,7 +4,7 @@ use pbuffer::render::{pick, Pick, PickWorkspace, PickedEdge, ProjectedVertex};
 use pbuffer::Viewport;
 
 use crate::frame::{CameraSpec, MeshData, RenderSpec};
-use crate::pipeline::POLY;
+use crate::setup::POLY;
 use crate::setup::{Scene, SceneStorage};
 
 /// One picked pixel: the library's answer, each edge with its end positions.

@@ -24,11 +24,12 @@ use pbuffer::render::{SchemeCoding, SchemeRenderer, ScreenSegments};
 use pbuffer::{Error, MonoPalette, SchemeViolation};
 
 use crate::frame::{CameraSpec, CullSpec, EngineSpec, Frame, MeshData, ModeSpec, RenderSpec};
-use crate::pipeline::{
-    camera, render_frame, AdjacencyStorage, Collect, MeshArrays, PackedFrame, EDGES, POLY,
-};
+use crate::pipeline::render_frame;
 use crate::reference3d::reference_frame;
-use crate::setup::{IdBuffers, Measured, Scene, SceneStorage};
+use crate::setup::{
+    camera, AdjacencyStorage, Collect, IdBuffers, Measured, MeshArrays, PackedFrame, Scene,
+    SceneStorage, EDGES, POLY,
+};
 
 /// Code width capacity on the host: the library's largest.
 pub const WIDTH: usize = 128;

@@ -1,19 +1,22 @@
 //! The library's engines set up on the host, once for every engine: the mesh, its
-//! edge adjacency, camera and settings ([`Scene`], built in [`SceneStorage`]), the lent
-//! buffers of a frame ([`IdBuffers`]) and one frame drawn in the measured region
-//! ([`Measured`]).
+//! edge adjacency, camera and settings ([`Scene`], built in [`SceneStorage`] from the
+//! specs by [`camera`] and [`settings`]), the lent buffers of a frame ([`IdBuffers`]),
+//! the host's span sink and probe ([`PackedFrame`], `Collect`) and one frame drawn in
+//! the measured region ([`Measured`]). [`crate::pipeline`] picks the engine; every
+//! driver starts here.
 
 use std::time::Instant;
 
-use pbuffer::mesh::{EdgeAdjacency, Mesh};
-use pbuffer::render::{IdWorkspace, ProjectedVertex};
-use pbuffer::{Camera, CodeWorkspace, Settings, Stats, Workspace};
-
-use crate::callgrind::measured_region;
-use crate::frame::{CameraSpec, Frame, MeshData, RenderSpec};
-use crate::pipeline::{
-    camera, frame, settings, AdjacencyStorage, Collect, MeshArrays, PackedFrame,
+use embedded_graphics::pixelcolor::BinaryColor;
+use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
+use pbuffer::render::{FrameProbe, IdWorkspace, ProjectedVertex};
+use pbuffer::{
+    Camera, CodeWorkspace, Cull, DrawMode, Pattern, Projection, Settings, Span, SpanSink, Stats,
+    Viewport, Workspace,
 };
+
+use crate::frame::{CameraSpec, CullSpec, Frame, MeshData, ModeSpec, ProjectionSpec, RenderSpec};
+use crate::measure::measured_region;
 
 /// The owned storage behind a [`Scene`]: the mesh's arrays, its faces' planarity
 /// and its adjacency's.
@@ -206,5 +209,268 @@ impl Measured {
             build_bytes,
             self.time_us,
         )
+    }
+}
+
+/// Scan-converter edge capacity and clipped-polygon capacity used on the host.
+pub(crate) const EDGES: usize = 512;
+pub(crate) const POLY: usize = 512;
+/// Code-fill engine on the host: active faces and edges. The code is 128 bits (4
+/// words), as on firmware; a frame that needs more is rendered again with 1024.
+pub const ACTIVE_FACES: usize = 2048;
+pub const ACTIVE_EDGES: usize = 8192;
+
+/// The host-only work inside the measured region of [`render_frame`] (the probe that
+/// collects the `--ids`/`--lines` images and the per-pixel host span sink): callgrind
+/// patterns that `report` passes as extra `--toggle-collect` options, so that
+/// collection is off while they run and the count is the library's own work.
+pub const EXCLUDED: [&str; 3] = [
+    "*setup::Collect as*FrameProbe*row*",
+    "*render::engines::fast::frame::probe_ids*",
+    "*setup::PackedFrame as*SpanSink*fill_span*",
+];
+
+/// A packed 1-bpp frame of any size (the `PackedFramebuffer` layout), as a span sink.
+#[derive(Debug)]
+pub struct PackedFrame {
+    pub width: usize,
+    pub height: usize,
+    pub bytes: Vec<u8>,
+    pub spans: u64,
+}
+
+impl PackedFrame {
+    pub fn new(width: usize, height: usize) -> Self {
+        Self {
+            width,
+            height,
+            bytes: vec![0; width.div_ceil(8) * height],
+            spans: 0,
+        }
+    }
+}
+
+impl SpanSink for PackedFrame {
+    type Color = BinaryColor;
+    type Error = std::convert::Infallible;
+
+    fn viewport(&self) -> Viewport {
+        Viewport {
+            width: self.width as u16,
+            height: self.height as u16,
+        }
+    }
+
+    /// As `PackedFramebuffer` does it (counted: it is the firmware's work too).
+    fn fill_mask(&mut self, y: u16, mask: &[u32], color: BinaryColor) -> Result<u32, Self::Error> {
+        let stride = self.width.div_ceil(8);
+        let y = usize::from(y);
+        let Some(row) = self.bytes.get_mut(y * stride..(y + 1) * stride) else {
+            return Ok(0);
+        };
+        let words = pbuffer::write_mask(row, self.width, mask, color.is_on());
+        self.spans += u64::from(words);
+        Ok(words)
+    }
+
+    fn fill_span(&mut self, span: Span, color: BinaryColor) -> Result<(), Self::Error> {
+        self.spans += 1;
+        let stride = self.width.div_ceil(8);
+        for x in span.x0()..span.x1() {
+            let i = usize::from(span.y()) * stride + usize::from(x) / 8;
+            let m = 0x80u8 >> (x % 8);
+            if color.is_on() {
+                self.bytes[i] |= m;
+            } else {
+                self.bytes[i] &= !m;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Collects the `--ids` and `--lines` images.
+pub(crate) struct Collect {
+    width: usize,
+    ids: Vec<u32>,
+    lines: Vec<u8>,
+}
+
+impl Collect {
+    /// Empty images of `width` x `height`.
+    pub(crate) fn new(width: usize, height: usize) -> Self {
+        Self {
+            width,
+            ids: vec![0; width * height],
+            lines: vec![0; width * height],
+        }
+    }
+}
+
+impl FrameProbe for Collect {
+    /// Never inlined: `report` leaves it out of the instruction count
+    /// (`--toggle-collect` on its symbol, see [`EXCLUDED`]).
+    #[inline(never)]
+    fn row(&mut self, y: u16, ids: &[u16], visible: &[u32], hidden: &[u32]) {
+        let base = usize::from(y) * self.width;
+        for (x, &id) in ids.iter().enumerate().take(self.width) {
+            self.ids[base + x] = u32::from(id);
+            let bit = |w: &[u32]| w.get(x / 32).is_some_and(|w| w & (1 << (x % 32)) != 0);
+            self.lines[base + x] = if bit(visible) {
+                1
+            } else if bit(hidden) {
+                2
+            } else {
+                0
+            };
+        }
+    }
+}
+
+/// The library mesh's borrowed arrays, built from `MeshData`.
+pub struct MeshArrays {
+    pub vertices: Vec<[f32; 3]>,
+    pub indices: Vec<u32>,
+    pub offsets: Vec<u32>,
+}
+
+impl MeshArrays {
+    pub fn new(mesh: &MeshData) -> Self {
+        let vertices = mesh.vertices.iter().map(|v| v.map(|c| c as f32)).collect();
+        let mut indices = Vec::new();
+        let mut offsets = vec![0u32];
+        for f in &mesh.faces {
+            indices.extend_from_slice(f);
+            offsets.push(indices.len() as u32);
+        }
+        Self {
+            vertices,
+            indices,
+            offsets,
+        }
+    }
+}
+
+/// Storage for building a mesh's edge adjacency: the weld map and half-edge records
+/// (needed only while building) and the edge list (kept for rendering).
+pub struct AdjacencyStorage {
+    pub weld: Vec<u32>,
+    pub scratch: Vec<HalfEdgeRecord>,
+    pub edges: Vec<MeshEdge>,
+}
+
+impl AdjacencyStorage {
+    /// Storage large enough for `arrays`.
+    pub fn new(arrays: &MeshArrays) -> Self {
+        Self {
+            weld: vec![0; arrays.vertices.len()],
+            scratch: vec![HalfEdgeRecord::default(); arrays.indices.len()],
+            edges: vec![MeshEdge::default(); arrays.indices.len()],
+        }
+    }
+
+    /// Builds the adjacency of `mesh` with crease angle `crease_deg`.
+    pub fn build<'s>(
+        &'s mut self,
+        mesh: &Mesh<'_>,
+        crease_deg: f64,
+    ) -> Result<EdgeAdjacency<'s>, String> {
+        EdgeAdjacency::build(
+            mesh,
+            crease_deg as f32,
+            &mut self.weld,
+            &mut self.scratch,
+            &mut self.edges,
+        )
+        .map_err(|e| format!("adjacency: {e}"))
+    }
+
+    /// Bytes of the storage needed only while building (weld map, half-edge records).
+    pub fn build_bytes(&self) -> usize {
+        std::mem::size_of_val(self.weld.as_slice()) + std::mem::size_of_val(self.scratch.as_slice())
+    }
+}
+
+/// The library camera of a `CameraSpec`.
+pub fn camera(spec: &CameraSpec) -> Result<Camera, String> {
+    let f = |v: [f64; 3]| v.map(|c| c as f32);
+    let projection = match spec.projection {
+        ProjectionSpec::Perspective { fov_deg } => Projection::Perspective {
+            fov_y_deg: fov_deg as f32,
+        },
+        ProjectionSpec::Orthographic { half_height } => Projection::Orthographic {
+            half_height: half_height as f32,
+        },
+    };
+    Camera::new(
+        f(spec.eye),
+        f(spec.target),
+        f(spec.up),
+        projection,
+        spec.near as f32,
+        spec.far as f32,
+    )
+    .map_err(|e| format!("camera: {e}"))
+}
+
+/// The library settings of a `RenderSpec`.
+pub fn settings(spec: &RenderSpec) -> Result<Settings, String> {
+    let pattern = Pattern::by_name(&spec.pattern)
+        .ok_or_else(|| format!("--pattern {}: unknown", spec.pattern))?;
+    Ok(Settings {
+        mode: match spec.mode {
+            ModeSpec::Wireframe => DrawMode::Wireframe,
+            ModeSpec::Hidden => DrawMode::HiddenRemoved,
+            ModeSpec::Dashed => DrawMode::Dashed,
+            ModeSpec::Surfaces => DrawMode::Surfaces,
+            ModeSpec::SurfacesDashed => DrawMode::SurfacesDashed,
+        },
+        cull: match spec.cull {
+            CullSpec::On => Cull::On,
+            CullSpec::Off => Cull::Off,
+            CullSpec::Auto => Cull::Auto,
+        },
+        pattern,
+        dashes: spec.dashes,
+    })
+}
+
+/// The frame and its `--stats` figures.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn frame(
+    w: usize,
+    h: usize,
+    probe: Collect,
+    target: PackedFrame,
+    stats: &Stats,
+    working: usize,
+    build_bytes: usize,
+    time_us: u64,
+) -> Frame {
+    Frame {
+        width: w,
+        height: h,
+        ids: probe.ids,
+        lines: probe.lines,
+        packed: target.bytes,
+        stats: vec![
+            ("faces".into(), u64::from(stats.faces)),
+            ("faces_drawn".into(), u64::from(stats.faces_drawn)),
+            ("feature_edges".into(), u64::from(stats.feature_edges)),
+            ("spans".into(), u64::from(stats.spans)),
+            ("bands".into(), u64::from(stats.bands)),
+            ("band_rows".into(), u64::from(stats.band_rows)),
+            (
+                "depth_buffer_bytes".into(),
+                u64::from(stats.depth_buffer_bytes),
+            ),
+            ("code_bits".into(), u64::from(stats.code_bits)),
+            ("peak_active_faces".into(), u64::from(stats.peak_faces)),
+            ("peak_active_edges".into(), u64::from(stats.peak_edges)),
+            ("working_ram_bytes".into(), working as u64),
+            ("adjacency_build_bytes".into(), build_bytes as u64),
+            ("time_us".into(), time_us),
+        ],
+        depth_step: [stats.depth_step_near, stats.depth_step_far].map(f64::from),
     }
 }

@@ -24,8 +24,9 @@ use embedded_graphics_simulator::sdl2::Keycode;
 use embedded_graphics_simulator::{
     BinaryColorTheme, OutputSettingsBuilder, SimulatorDisplay, SimulatorEvent, Window,
 };
-use host_tests::cli::{one_line, parse_look, Look};
 use host_tests::firmware::{instrument, scenes::fnv1a64, Demo};
+use host_tests::image::Look;
+use host_tests::tools::cli::{one_line, parse_look};
 
 /// The window title; the screenshot check finds the window by it.
 const TITLE: &str = "pbuffer instrument demo";

@@ -16,9 +16,10 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Parser;
-use host_tests::cli::{one_line, parse_look, Look};
 use host_tests::firmware::{frames_rgb, instrument, scenes::fnv1a64, Demo};
 use host_tests::image::write_rgb_png;
+use host_tests::image::Look;
+use host_tests::tools::cli::{one_line, parse_look};
 
 /// The flags of `instrument`.
 #[derive(Debug, Parser)]

@@ -21,13 +21,14 @@ use std::path::Path;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use host_tests::cli::{help, parse_args, Look, Options};
 use host_tests::frame::{CameraSpec, Frame, MeshData};
 use host_tests::grey::{render_grey, shades};
+use host_tests::image::Look;
 use host_tests::image::{fnv1a64, packed_pixel, packed_stride, write_rgb_png};
 use host_tests::obj::{load_scene, workspace_root};
 use host_tests::pipeline::render_frame;
 use host_tests::schemes::{render_scheme, SchemeError, SchemeSpec};
+use host_tests::tools::cli::{help, parse_args, Options};
 
 /// An error to report: the line to print and the exit status.
 struct Fail(String, u8);

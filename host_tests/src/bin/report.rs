@@ -7,7 +7,7 @@
 //! options: --jobs N (callgrind jobs at a time, default 2), --no-counts, --out DIR, --help
 //! ```
 //!
-//! Renders the scenes of `host_tests::report` at 400x240 and 128x64 across sub-pixel
+//! Renders the scenes of `host_tests::tools::report` at 400x240 and 128x64 across sub-pixel
 //! bits, depth bits, engine and band height; measures the error against the f64
 //! reference and the instructions per frame under callgrind (the binary re-executes
 //! itself as `report --child KEY`); checks `pbuffer::recommend` on every scene; and
@@ -18,13 +18,13 @@ use std::fmt::Write as _;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use host_tests::callgrind::{cpu_model, thousands, tool_version};
-use host_tests::cli::{help_text, parse_flags, ReportFlags};
-use host_tests::report::run::{counts_pass, errors_pass, Results, BOUND};
-use host_tests::report::write::{
+use host_tests::tools::callgrind::{cpu_model, thousands, tool_version};
+use host_tests::tools::cli::{help_text, parse_flags, ReportFlags};
+use host_tests::tools::report::run::{counts_pass, errors_pass, Results, BOUND};
+use host_tests::tools::report::write::{
     depth_table, points, recommendation_table, scene_table, summaries, summary_table,
 };
-use host_tests::report::{child, depth, plot, Config, SIZES};
+use host_tests::tools::report::{child, depth, plot, Config, SIZES};
 
 fn main() -> ExitCode {
     let argv: Vec<String> = std::env::args().collect();
@@ -214,7 +214,7 @@ fn document(
     );
     let _ = writeln!(
         s,
-        "## Depth precision\n\nRelative error of the depth the Z-buffer stores, against depth bits and far/near (near = 1; see `host_tests/src/report/depth.rs`). The library offers 16- and 32-bit samples only (`Depth` for `u16` and `u32`); there is no 24-bit sample. Two formulas, and the measured figures carry both: the truncation to the sample width, `2^-(B-1) d / near`, largest at the far plane; and the fixed-point clip coordinates, whose unit is about `2^-23` of the largest coordinate (here the far distance), largest relative to the nearest depth. 16 bits are limited by the sample width (at far/near 1e5 depths beyond `near 2^15` read back 0: lost); 32 bits by the positions. A 24-bit sample, if it existed, would have a worst error `2^-23 far/near` at the far plane, the same as the positions' worst error at the near plane: about as precise as what it stores, at any ratio.\n\n{}",
+        "## Depth precision\n\nRelative error of the depth the Z-buffer stores, against depth bits and far/near (near = 1; see `host_tests/src/tools/report/depth.rs`). The library offers 16- and 32-bit samples only (`Depth` for `u16` and `u32`); there is no 24-bit sample. Two formulas, and the measured figures carry both: the truncation to the sample width, `2^-(B-1) d / near`, largest at the far plane; and the fixed-point clip coordinates, whose unit is about `2^-23` of the largest coordinate (here the far distance), largest relative to the nearest depth. 16 bits are limited by the sample width (at far/near 1e5 depths beyond `near 2^15` read back 0: lost); 32 bits by the positions. A 24-bit sample, if it existed, would have a worst error `2^-23 far/near` at the far plane, the same as the positions' worst error at the near plane: about as precise as what it stores, at any ratio.\n\n{}",
         depth_table(depth_rows)
     );
     for &size in sizes {
@@ -232,7 +232,7 @@ fn document(
                 "### {}x{}: sub-pixel bits x depth bits (Z-buffer, {})\n\n{grid}",
                 size.0,
                 size.1,
-                host_tests::report::GRID_SCENES.join(", ")
+                host_tests::tools::report::GRID_SCENES.join(", ")
             );
         }
     }
@@ -242,7 +242,7 @@ fn document(
 /// `report -- engines`: every engine on every scene, `engines.md`.
 fn engines_report(args: &ReportFlags) -> ExitCode {
     use host_tests::frame::EngineSpec;
-    use host_tests::report::engines;
+    use host_tests::tools::report::engines;
     let t = Instant::now();
     let size = if args.quick { (128, 64) } else { (400, 240) };
     let (mut rows, skipped) =

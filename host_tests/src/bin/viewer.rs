@@ -28,14 +28,14 @@ use embedded_graphics_simulator::sdl2::Keycode;
 use embedded_graphics_simulator::{
     BinaryColorTheme, OutputSettingsBuilder, SimulatorDisplay, SimulatorEvent, Window,
 };
-use host_tests::cli::{parse_args, Options};
 use host_tests::frame::{MeshData, RenderSpec};
 use host_tests::image::{fnv1a64, packed_pixel};
 use host_tests::obj::load_scene;
-use host_tests::orbit::{
+use host_tests::pipeline::render_frame;
+use host_tests::tools::cli::{parse_args, Options};
+use host_tests::tools::orbit::{
     engine_name, mode_name, next_mode, other_engine, render_flags, Orbit, STEP_DEG, ZOOM_STEP,
 };
-use host_tests::pipeline::render_frame;
 
 /// The window title; the screenshot check finds the window by it.
 const TITLE: &str = "pbuffer viewer";

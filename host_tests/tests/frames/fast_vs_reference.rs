@@ -10,9 +10,9 @@ use host_tests::frame::{CameraSpec, EngineSpec, ModeSpec, ProjectionSpec, Render
 use host_tests::metrics::{near_edge_mask, snapping_bound, unexplained_diffs};
 use host_tests::pipeline::render_frame;
 use host_tests::reference3d::reference_frame;
-use host_tests::report::engines::{scene_names, spec};
-use host_tests::report::errors::{measure, Errors};
-use host_tests::report::load_scene;
+use host_tests::tools::report::engines::{scene_names, spec};
+use host_tests::tools::report::errors::{measure, Errors};
+use host_tests::tools::report::load_scene;
 
 /// Where the fast engine is over issue 23's limits today, measured (2026-11-25): the
 /// scene, size, and the bounds it is held to instead (far pixels, misclassified %).

@@ -11,11 +11,11 @@
 use host_tests::fast::with_every_back_face;
 use host_tests::frame::{CameraSpec, CullSpec, EngineSpec, ModeSpec, ProjectionSpec, RenderSpec};
 use host_tests::metrics::compare;
-use host_tests::orbit::Orbit;
 use host_tests::pipeline::render_frame;
 use host_tests::reference3d::reference_frame;
-use host_tests::report::load_scene;
 use host_tests::shapes::open_cylinder;
+use host_tests::tools::orbit::Orbit;
+use host_tests::tools::report::load_scene;
 
 /// Into the mouth from above and to the side, both projections. (Views whose
 /// direction makes a face edge-on to within a tenth of a degree are avoided: there
@@ -110,7 +110,7 @@ fn back_faces_away_from_the_holes_are_skipped_and_no_pixel_gets_worse() {
         for size in [(400, 240), (128, 64)] {
             let spec = RenderSpec {
                 cull: CullSpec::Off,
-                ..host_tests::report::engines::spec(EngineSpec::Fast, size)
+                ..host_tests::tools::report::engines::spec(EngineSpec::Fast, size)
             };
             let mut orbit = Orbit::new(host_tests::fit::fit_camera(mesh, size.0, size.1), mesh);
             for view in 0..12 {

@@ -10,7 +10,7 @@ use pbuffer::subpixel::U4;
 use pbuffer::{packed_len, PackedFramebuffer, Stats, CREASE_DEG};
 
 use host_tests::fast::FastBuffers;
-use host_tests::pipeline::MeshArrays;
+use host_tests::setup::MeshArrays;
 
 type Frame = PackedFramebuffer<128, 64, { packed_len(128, 64) }>;
 

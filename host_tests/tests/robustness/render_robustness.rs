@@ -10,8 +10,8 @@ use std::convert::Infallible;
 use embedded_graphics::pixelcolor::BinaryColor;
 use fixed::types::extra::U4;
 use host_tests::frame::MeshData;
-use host_tests::pipeline::MeshArrays;
 use host_tests::random::Rng;
+use host_tests::setup::MeshArrays;
 use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
 use pbuffer::render::{storage_rows, ProjectedVertex};
 use pbuffer::{

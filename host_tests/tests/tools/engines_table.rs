@@ -5,7 +5,7 @@
 //! --nocapture` prints the table.
 
 use host_tests::frame::EngineSpec;
-use host_tests::report::engines::{errors_pass, expected_failure, markdown, QUICK_SCENES};
+use host_tests::tools::report::engines::{errors_pass, expected_failure, markdown, QUICK_SCENES};
 
 #[test]
 fn every_engine_matches_the_reference_where_it_is_meant_to_work() {

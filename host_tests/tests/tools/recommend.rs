@@ -10,9 +10,9 @@
 use host_tests::frame::RenderSpec;
 use host_tests::pipeline::render_frame;
 use host_tests::reference3d::reference_frame;
-use host_tests::report::errors::{depth_complexity, measure};
-use host_tests::report::run::{recommended_configs, scene_bounds, BOUND};
-use host_tests::report::{load_scene, SIZES};
+use host_tests::tools::report::errors::{depth_complexity, measure};
+use host_tests::tools::report::run::{recommended_configs, scene_bounds, BOUND};
+use host_tests::tools::report::{load_scene, SIZES};
 use pbuffer::recommend::recommend;
 use pbuffer::Viewport;
 

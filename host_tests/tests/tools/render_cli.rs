@@ -404,7 +404,7 @@ fn every_callgrind_exclusion_names_a_function_of_the_report_binary() {
         "{} symbols: is the binary stripped?",
         names.len()
     );
-    for pattern in host_tests::pipeline::EXCLUDED {
+    for pattern in host_tests::setup::EXCLUDED {
         let hits = names.iter().filter(|n| glob(pattern, n)).count();
         assert!(hits > 0, "no function of `report` matches {pattern:?}");
     }

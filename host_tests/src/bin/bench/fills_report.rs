@@ -3,11 +3,11 @@
 
 use std::process::ExitCode;
 
-use host_tests::callgrind::{
-    cpu_model, finish_report, measure_all, ratio, report_header, thousands, tool_version, Table,
-};
 use host_tests::image::{count_diff, count_set, packed_pixel};
 use host_tests::scenes::{bench_triangles, large_polygons, HEIGHT, WIDTH};
+use host_tests::tools::callgrind::{
+    cpu_model, finish_report, measure_all, ratio, report_header, thousands, tool_version, Table,
+};
 
 use super::{
     check_triangles, execute, job_id, shapes, Set, Shapes, Variant, SCALE_COUNT, SCALE_SIZES,

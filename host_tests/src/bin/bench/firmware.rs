@@ -14,7 +14,8 @@ use std::collections::HashMap;
 use std::process::ExitCode;
 
 use fixed::types::extra::U4;
-use host_tests::callgrind::{measure_all, measured_region, thousands};
+use host_tests::measure::measured_region;
+use host_tests::tools::callgrind::{measure_all, thousands};
 use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
 use pbuffer::render::{BakedMesh, CompactEdge, FacePlane, FastRenderer, FastWorkspace};
 use pbuffer::{packed_len, CodeFillRenderer, CodeWorkspace, DrawMode, PackedFramebuffer, Pattern};

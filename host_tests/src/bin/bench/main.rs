@@ -11,13 +11,13 @@
 //! `--firmware` counts the firmware examples' frames on the host and sets them against
 //! the emulated Cortex-M4's counts of the same frames (`firmware.rs`).
 //!
-//! `--scene3d` runs the 3-D section instead (`host_tests::bench3d`): three models at
+//! `--scene3d` runs the 3-D section instead (`host_tests::tools::bench3d`): three models at
 //! two sizes with dashed hidden lines, the library's code-fill and Z-buffer engines
 //! against the plain f32 P-buffer baseline.
 //!
 //! The binary re-executes itself under `valgrind --tool=callgrind` once per measurement
 //! (`--child ID`), with collection switched on only inside `measured_region`, and reads
-//! the instruction total (Ir) from the callgrind output (`host_tests::callgrind`). Scene
+//! the instruction total (Ir) from the callgrind output (`host_tests::tools::callgrind`). Scene
 //! setup, vertex conversion and framebuffer allocation happen outside the measured
 //! region.
 //!
@@ -44,13 +44,13 @@ use embedded_graphics::pixelcolor::BinaryColor;
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::{PrimitiveStyle, Triangle};
 use fixed::types::extra::U4;
-use host_tests::callgrind::measured_region;
-use host_tests::cli::{help_text, parse_flags, BenchFlags};
 use host_tests::image::{count_diff, count_set};
+use host_tests::measure::measured_region;
 use host_tests::scenes::{
     bench_triangles, int_triangle_to_screen, large_polygons, sized_triangles, to_screen,
     IntTriangle, HEIGHT, WIDTH,
 };
+use host_tests::tools::cli::{help_text, parse_flags, BenchFlags};
 use pbuffer::{packed_len, FillRule, PackedFramebuffer, ScanConverter, ScreenPoint, XorFiller};
 
 type Frac = U4;
@@ -383,7 +383,7 @@ fn child(id: &str) -> ExitCode {
         return pixels_or_error(firmware::child(key));
     }
     if let Some(name) = id.strip_prefix("scene3d/") {
-        return pixels_or_error(host_tests::bench3d::child(name));
+        return pixels_or_error(host_tests::tools::bench3d::child(name));
     }
     let parsed = id
         .split_once('/')
@@ -428,10 +428,10 @@ fn main() -> ExitCode {
         return firmware::run(flags.m4.as_deref().unwrap_or(firmware::DEFAULT_M4), jobs);
     }
     if flags.ram {
-        return host_tests::bench3d::run_ram(markdown);
+        return host_tests::tools::bench3d::run_ram(markdown);
     }
     if flags.scene3d {
-        return host_tests::bench3d::run(markdown, jobs);
+        return host_tests::tools::bench3d::run(markdown, jobs);
     }
 
     fills_report::run(markdown, jobs)

@@ -7,7 +7,7 @@ use super::errors::Errors;
 use super::plot::{pareto, Point};
 use super::run::{Results, Row, BOUND};
 use super::{Config, GRID_SCENES};
-use crate::callgrind::thousands;
+use crate::tools::callgrind::thousands;
 
 /// One configuration summed over the scenes of a size.
 #[derive(Clone, Debug)]

@@ -25,9 +25,9 @@ use super::{
     code_fill, View, ACTIVE_EDGES, ACTIVE_FACES, CODE_WORDS, MODELS, ORDER_WORDS, POLY, SIZES,
 };
 use crate::bsp::{with_bsp, DepthRanks};
-use crate::callgrind::thousands;
-use crate::progress::Progress;
 use crate::setup::{IdBuffers, SceneStorage};
+use crate::tools::callgrind::thousands;
+use crate::tools::progress::Progress;
 
 /// The goal for suzanne at 400 x 240, dashed: working RAM at most 8 KiB.
 const GOAL: usize = 8 * 1024;

@@ -9,9 +9,9 @@ use std::path::PathBuf;
 
 use clap::{ArgAction, Parser};
 
-use super::look::Look;
 use super::values;
 use crate::frame::{CullSpec, EngineSpec, ModeSpec};
+use crate::image::Look;
 use crate::schemes::SchemeSpec;
 
 const CAMERA: &str = "Camera (default: --fit)";

@@ -3,11 +3,11 @@
 //! switches, and the `render` flags that reproduce the view exactly, which is how the
 //! screenshot check (`scripts/simulator-check`) asks `render` for the same frame.
 
-use crate::cli::Look;
 use crate::fit::used_vertex_bounds;
 use crate::frame::{
     CameraSpec, CullSpec, EngineSpec, MeshData, ModeSpec, ProjectionSpec, RenderSpec,
 };
+use crate::image::Look;
 
 /// Degrees turned by one arrow key.
 pub const STEP_DEG: f64 = 15.0;
@@ -232,8 +232,8 @@ pub fn render_flags(cam: &CameraSpec, spec: &RenderSpec, look: Look, scale: usiz
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::cli::parse_args;
     use crate::obj::builtin_cube;
+    use crate::tools::cli::parse_args;
 
     fn start(args: &[&str]) -> (Orbit, RenderSpec, Look, usize) {
         let o = parse_args(args.iter().copied()).unwrap();
@@ -301,7 +301,7 @@ mod tests {
         }
         let e = orbit.base_elevation_deg() + orbit.pitch_deg;
         assert!((e - MAX_ELEVATION_DEG).abs() < 1e-9);
-        assert!(crate::cli::check_camera(&orbit.camera()).is_ok());
+        assert!(crate::tools::cli::check_camera(&orbit.camera()).is_ok());
         for _ in 0..20 {
             orbit.magnify(ZOOM_STEP);
         }

@@ -12,12 +12,13 @@ use pbuffer::Viewport;
 
 use super::errors::{depth_complexity, measure, Errors};
 use super::{configs, job_key, load_scene, scene_names, sizes, Config, ENGINES};
-use crate::callgrind::callgrind_with;
 use crate::frame::{CameraSpec, ProjectionSpec, RenderSpec};
-use crate::pipeline::{render_frame, EXCLUDED};
-use crate::progress::Progress;
+use crate::pipeline::render_frame;
 use crate::reference3d::reference_frame;
+use crate::setup::EXCLUDED;
 use crate::shapes;
+use crate::tools::callgrind::callgrind_with;
+use crate::tools::progress::Progress;
 
 /// One rendered combination.
 #[derive(Clone, Debug)]
@@ -265,7 +266,7 @@ pub fn errors_pass(quick: bool, res: &mut Results) {
 /// Counts the instructions of every row under callgrind, `jobs` at a time.
 pub fn counts_pass(res: &mut Results, jobs: usize) {
     let t = Instant::now();
-    let valgrind = crate::callgrind::tool_version("valgrind", "--version");
+    let valgrind = crate::tools::callgrind::tool_version("valgrind", "--version");
     if valgrind.is_none() {
         res.no_counts = Some("valgrind is not installed: no instruction counts".into());
         return;

@@ -5,14 +5,14 @@ use std::process::ExitCode;
 
 use super::{draw, refusal_text, Drawn, Engine, Job, Outcome, Refusal, Renderer, View};
 use super::{CODE_WORDS, EMPTY, MODELS, POLY, ROOMIER, SIZES};
-use crate::callgrind::{
-    cpu_model, finish_report, measure_all, ratio, report_header, thousands, tool_version, Measured,
-    Table,
-};
 use crate::frame::{EngineSpec, RenderSpec};
 use crate::image::{count_diff, count_set};
 use crate::pipeline::render_frame;
-use crate::progress::Progress;
+use crate::tools::callgrind::{
+    cpu_model, finish_report, measure_all, ratio, report_header, thousands, tool_version, Measured,
+    Table,
+};
+use crate::tools::progress::Progress;
 
 /// A table row after the native run.
 struct Row {

@@ -1,7 +1,7 @@
 //! The harness of the `bench` binary: instruction counts (Ir) from valgrind callgrind.
 //!
 //! The binary re-executes itself under `valgrind --tool=callgrind` once per job
-//! (`bench --child ID`), with collection switched on only inside [`measured_region`]
+//! (`bench --child ID`), with collection switched on only inside [`measured_region`](crate::measure::measured_region)
 //! (`--toggle-collect=*measured_region*`); the child prints `pixels=N` for the frame
 //! it drew, and the parent reads the instruction total from the callgrind output.
 //! Also the report tables and their common header and checks.
@@ -12,14 +12,7 @@ use std::process::{Command, ExitCode};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 
-use crate::progress::Progress;
-
-/// Everything between entry and exit of this function is counted (`--toggle-collect`
-/// matches its symbol, so it must never be inlined).
-#[inline(never)]
-pub fn measured_region(f: &mut dyn FnMut()) {
-    f();
-}
+use crate::tools::progress::Progress;
 
 /// The first line `cmd arg` prints (`--version`), or `None` when it cannot run.
 pub fn tool_version(cmd: &str, arg: &str) -> Option<String> {

@@ -29,10 +29,10 @@ use pbuffer::{
 
 use crate::baseline::{prepare_baseline, render_prepared};
 use crate::bsp::{with_bsp, DepthRanks};
-use crate::callgrind::measured_region;
 use crate::fit::fit_camera;
 use crate::frame::{CameraSpec, MeshData, RenderSpec};
 use crate::image::count_set;
+use crate::measure::measured_region;
 use crate::obj::load_obj;
 use crate::setup::{IdBuffers, Scene, SceneStorage};
 

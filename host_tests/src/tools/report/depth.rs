@@ -23,7 +23,7 @@ use pbuffer::render::{storage_rows, Depth, ProjectedVertex};
 use pbuffer::{Camera, MonoPalette, Projection, Settings, Workspace, ZBufferRenderer};
 
 use crate::frame::MeshData;
-use crate::pipeline::{AdjacencyStorage, MeshArrays, PackedFrame};
+use crate::setup::{AdjacencyStorage, MeshArrays, PackedFrame};
 
 /// Far/near ratios of the table.
 pub const RATIOS: [f64; 3] = [10.0, 1000.0, 1e5];

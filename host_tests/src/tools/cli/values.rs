@@ -7,9 +7,9 @@
 
 use std::path::PathBuf;
 
-use super::look::Look;
 use super::MAX_SIDE;
 use crate::frame::{CullSpec, EngineSpec, ModeSpec};
+use crate::image::Look;
 use crate::schemes::SchemeSpec;
 
 /// What a parser says about an empty value.

@@ -7,10 +7,10 @@ use std::fmt::Write as _;
 
 use super::errors::{measure, Errors};
 use super::{load_scene, MODELS, PROCEDURAL};
-use crate::callgrind::thousands;
 use crate::frame::{EngineSpec, ModeSpec, RenderSpec};
 use crate::pipeline::render_frame;
 use crate::reference3d::reference_frame;
+use crate::tools::callgrind::thousands;
 
 /// Scenes of `--quick` (and of the CI test).
 pub const QUICK_SCENES: [&str; 4] = ["cube", "boxes", "cyclic", "suzanne"];
@@ -91,7 +91,7 @@ pub fn errors_pass(
     engines: &[EngineSpec],
 ) -> (Vec<EngineRow>, Vec<String>) {
     let (mut rows, mut skipped) = (Vec::new(), Vec::new());
-    let progress = crate::progress::Progress::new("report: engines", "scene", scenes.len());
+    let progress = crate::tools::progress::Progress::new("report: engines", "scene", scenes.len());
     for &name in scenes {
         let scene = match load_scene(name) {
             Ok(s) => s,
@@ -165,7 +165,7 @@ pub fn child(key: &str) -> Result<usize, String> {
 /// Instruction counts of every row (callgrind, `jobs` at a time); `Err` says why
 /// there are none.
 pub fn counts_pass(rows: &mut [EngineRow], jobs: usize) -> Result<(), String> {
-    crate::callgrind::tool_version("valgrind", "--version")
+    crate::tools::callgrind::tool_version("valgrind", "--version")
         .ok_or("valgrind is not installed: no instruction counts")?;
     let exe = std::env::current_exe().map_err(|e| format!("cannot find the report binary: {e}"))?;
     let dir = std::env::temp_dir().join(format!("pbuffer-engines-{}", std::process::id()));

@@ -2,8 +2,8 @@
 
 use std::path::PathBuf;
 
-use super::look::Look;
 use crate::frame::{EngineSpec, ProjectionSpec, RenderSpec};
+use crate::image::Look;
 use crate::schemes::SchemeSpec;
 
 /// Everything the command line says.
