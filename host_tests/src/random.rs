@@ -2,7 +2,9 @@
 //!
 //! Vertices are generated as raw fixed-point integers `k` (value `k / 2^S`), so the
 //! library (`ScreenPoint::from_bits`) and the reference (`k as f64 / 2^S`, exact) see the
-//! very same vertices. The generator is a self-contained SplitMix64, seeded explicitly.
+//! very same vertices. The generator is a self-contained SplitMix64, seeded explicitly:
+//! host_tests' only one (`scenes` draws the polygon test scene and the benchmark
+//! triangles with it too).
 
 use std::f64::consts::TAU;
 
@@ -38,6 +40,13 @@ impl Rng {
     /// Uniform integer in `0..n` (`n > 0`).
     pub fn below(&mut self, n: u64) -> u64 {
         ((u128::from(self.next_u64()) * u128::from(n)) >> 64) as u64
+    }
+
+    /// Uniform integer in `[lo, hi]` (inclusive; `lo <= hi`).
+    pub fn int(&mut self, lo: i32, hi: i32) -> i32 {
+        assert!(lo <= hi, "int: empty range {lo}..={hi}");
+        let n = (i64::from(hi) - i64::from(lo) + 1) as u64;
+        (i64::from(lo) + self.below(n) as i64) as i32
     }
 
     /// True with probability `p`.
@@ -387,6 +396,20 @@ mod tests {
         let a = polygon(&mut Rng::new(7), Shape::Concave, 4, 64, 64);
         let b = polygon(&mut Rng::new(7), Shape::Concave, 4, 64, 64);
         assert_eq!(a, b);
+    }
+
+    #[test]
+    fn int_is_inclusive() {
+        let mut rng = Rng::new(3);
+        let mut seen = [false; 5];
+        for _ in 0..200 {
+            let k = rng.int(-2, 2);
+            assert!((-2..=2).contains(&k));
+            seen[(k + 2) as usize] = true;
+        }
+        assert!(seen.iter().all(|&s| s), "every value of -2..=2 drawn");
+        assert_eq!(rng.int(7, 7), 7);
+        let _ = rng.int(i32::MIN, i32::MAX);
     }
 
     #[test]

@@ -1,7 +1,8 @@
 //! Fixed, deterministic scenes for the `render` command and the `bench` harness.
 //!
-//! Everything here is generated from fixed seeds by a small xorshift generator, so the
-//! scenes are the same on every machine and in every run (no `rand` dependency).
+//! Everything here is generated from fixed seeds by [`Rng`] (the SplitMix64 of
+//! [`crate::random`], which the tests' random scenes use too), so the scenes are the same
+//! on every machine and in every run (no `rand` dependency).
 //!
 //! * [`test_scene`]: the polygon test scene on 400 x 240 (triangles of 1 to 200 px, a
 //!   concave comb, a self-intersecting star drawn with both fill rules, thin needles, a
@@ -17,52 +18,12 @@
 use fixed::types::extra::LeEqU32;
 use pbuffer::{FillRule, ScreenPoint};
 
+use crate::random::Rng;
+
 /// Width of all scenes, in pixels.
 pub const WIDTH: usize = 400;
 /// Height of all scenes, in pixels.
 pub const HEIGHT: usize = 240;
-
-/// xorshift64* (Vigna): small, fast, good enough for scene layout.
-#[derive(Clone, Debug)]
-pub struct XorShift64(u64);
-
-impl XorShift64 {
-    /// A generator from a seed (0 is replaced by a fixed non-zero constant).
-    pub fn new(seed: u64) -> Self {
-        Self(if seed == 0 {
-            0x9E37_79B9_7F4A_7C15
-        } else {
-            seed
-        })
-    }
-
-    /// Next 64 random bits.
-    pub fn next_u64(&mut self) -> u64 {
-        let mut x = self.0;
-        x ^= x >> 12;
-        x ^= x << 25;
-        x ^= x >> 27;
-        self.0 = x;
-        x.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-
-    /// Uniform in [0, 1) with 53 bits.
-    pub fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
-    }
-
-    /// Uniform in [lo, hi).
-    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-
-    /// Uniform integer in [lo, hi] (inclusive).
-    pub fn int(&mut self, lo: i32, hi: i32) -> i32 {
-        assert!(lo <= hi);
-        let span = (i64::from(hi) - i64::from(lo) + 1) as u64;
-        (i64::from(lo) + (self.next_u64() % span) as i64) as i32
-    }
-}
 
 /// Rounds to the nearest multiple of 1/16.
 pub fn q16(v: f64) -> f64 {
@@ -153,7 +114,7 @@ pub fn comb(x0: f64, y0: f64, x1: f64, y1: f64, teeth: usize, bar: f64) -> Vec<(
 /// order matters because some polygons are drawn in the background colour.
 pub fn test_scene() -> Vec<ScenePolygon> {
     let mut s = Vec::new();
-    let mut rng = XorShift64::new(0x5EED_0001);
+    let mut rng = Rng::new(0x5EED_0001);
 
     // Left half: 40 random triangles, sizes log-uniform in 1..200 px, drawn largest first;
     // every third one in the background colour so that it cuts into the larger ones.
@@ -301,7 +262,7 @@ pub fn int_triangle_to_screen<Frac: LeEqU32>(t: &IntTriangle) -> [ScreenPoint<Fr
     })
 }
 
-fn random_int_triangle(rng: &mut XorShift64, size: f64) -> IntTriangle {
+fn random_int_triangle(rng: &mut Rng, size: f64) -> IntTriangle {
     // Vertices on a circle of diameter `size` whose centre keeps the circle on screen
     // where possible; then clamped to the screen. Zero-area triangles are redrawn.
     loop {
@@ -325,7 +286,7 @@ fn random_int_triangle(rng: &mut XorShift64, size: f64) -> IntTriangle {
 /// (20-60 px) and 12 large (100-240 px), shuffled by size class, all on screen, none of
 /// zero area, with integer pixel-centre vertices.
 pub fn bench_triangles() -> Vec<IntTriangle> {
-    let mut rng = XorShift64::new(0xBE4C_0002);
+    let mut rng = Rng::new(0xBE4C_0002);
     let mut v = Vec::new();
     for (count, lo, hi) in [(300, 2.0, 10.0), (60, 20.0, 60.0), (12, 100.0, 240.0)] {
         for _ in 0..count {
@@ -335,7 +296,7 @@ pub fn bench_triangles() -> Vec<IntTriangle> {
     }
     // Interleave the classes deterministically (Fisher-Yates with the same generator).
     for i in (1..v.len()).rev() {
-        let j = (rng.next_u64() % (i as u64 + 1)) as usize;
+        let j = rng.below(i as u64 + 1) as usize;
         v.swap(i, j);
     }
     v
@@ -344,7 +305,7 @@ pub fn bench_triangles() -> Vec<IntTriangle> {
 /// `count` triangles whose vertices lie on a circle of diameter `size` (<= 239 px),
 /// placed at random on screen: for the scaling table.
 pub fn sized_triangles(size: f64, count: usize, seed: u64) -> Vec<IntTriangle> {
-    let mut rng = XorShift64::new(seed);
+    let mut rng = Rng::new(seed);
     (0..count)
         .map(|_| random_int_triangle(&mut rng, size))
         .collect()
