@@ -3,6 +3,9 @@
 use core::convert::Infallible;
 use core::fmt;
 
+/// The largest supported target side, in pixels ([`Error::ViewportTooLarge`] beyond).
+pub const MAX_VIEWPORT: u32 = 8192;
+
 /// Everything that can go wrong in pbuffer, as a value: no input panics.
 ///
 /// `T` is the error of the span sink or draw target the spans go to; it is
@@ -28,7 +31,7 @@ pub enum Error<T = Infallible> {
         /// The compiled capacity.
         capacity: usize,
     },
-    /// The target is larger than [`MAX_VIEWPORT`](crate::MAX_VIEWPORT) in some direction.
+    /// The target is larger than [`MAX_VIEWPORT`] in some direction.
     ViewportTooLarge {
         /// Width of the target in pixels.
         width: u32,
@@ -97,7 +100,7 @@ pub enum Error<T = Infallible> {
         capacity: usize,
     },
     /// Surface codes break a condition of their coding scheme (the modulo-2 surface-filling paper).
-    Scheme(crate::codes::SchemeViolation),
+    Scheme(SchemeViolation),
     /// Too few sub-pixel bits for a pixel's sub-samples to lie on the fixed-point grid
     /// (the grey coverage mode samples a 4 x 4 grid at eighths of a pixel).
     SubpixelTooCoarse {
@@ -145,6 +148,176 @@ pub enum CameraProblem {
     NearNotPositive,
     /// `far <= near`.
     FarNotBeyondNear,
+}
+
+/// Which condition of a coding scheme (or of its occlusion graph) does not hold.
+///
+/// Paths are numbered from 0 in the order given to [`OcclusionGraph::new`](crate::codes::OcclusionGraph::new).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
+pub enum SchemeViolation {
+    /// A path lists no surface.
+    EmptyPath {
+        /// The empty path.
+        path: usize,
+    },
+    /// A path names a surface the graph does not have.
+    UnknownSurface {
+        /// The path.
+        path: usize,
+        /// The surface index, not below the surface count.
+        surface: u16,
+    },
+    /// A path lists a surface twice.
+    RepeatedSurface {
+        /// The path.
+        path: usize,
+        /// The repeated surface.
+        surface: u16,
+    },
+    /// Two paths put the surfaces they share in different depth orders.
+    OrderConflict {
+        /// The first path.
+        first: usize,
+        /// The second path.
+        second: usize,
+    },
+    /// The depth orders of the paths form a cycle, so surfaces have no depth level.
+    CyclicOrder,
+    /// The number of codes given is not the number the graph needs.
+    CodeCount {
+        /// Codes given.
+        given: usize,
+        /// Codes needed (surfaces, or paths for path codes).
+        expected: usize,
+    },
+    /// Proposition 1: the codes of this path are linearly dependent over GF(2), so two
+    /// combinations on it give the same code.
+    PathDependent {
+        /// The path.
+        path: usize,
+    },
+    /// Proposition 2: the codes of the union of these two paths are linearly
+    /// dependent, so a combination on one equals a different one on the other.
+    PathUnionDependent {
+        /// The first path.
+        first: usize,
+        /// The second path.
+        second: usize,
+    },
+    /// Proposition 3: `p_first + p_second` lies in the span of the node codewords, so a
+    /// combination on one path equals a combination on the other.
+    PathCodesInNodeSpan {
+        /// The first path.
+        first: usize,
+        /// The second path.
+        second: usize,
+    },
+    /// Proposition 4: the sum of the node codes of these two priorities is a path
+    /// code, so a node on one path decodes like another node on another path.
+    NodeCodesInPathCode {
+        /// The first priority (0 = blank, 1 = nearest surface).
+        first: u32,
+        /// The second priority.
+        second: u32,
+    },
+    /// No assignment of codes of this width satisfies Propositions 1 and 2.
+    NoAssignment {
+        /// The code width searched, in bits.
+        width: u32,
+    },
+    /// The search for codes stopped after its budget of trials, undecided.
+    SearchGaveUp {
+        /// The code width searched, in bits.
+        width: u32,
+        /// Candidate codes tried.
+        trials: u64,
+    },
+    /// A pixel's code is in no row of the colour table: the surfaces covering it are
+    /// on no path of the graph (the scene has an overlap the graph omits), or the
+    /// screen segment put the pixel on a path that does not hold them.
+    UnlistedCode {
+        /// The code the filler left at the pixel.
+        code: u128,
+        /// The pixel's column.
+        x: u16,
+        /// The pixel's row.
+        y: u16,
+    },
+    /// A screen segment names a path the graph does not have.
+    UnknownPath {
+        /// The path named.
+        path: usize,
+        /// The pixel's column.
+        x: u16,
+        /// The pixel's row.
+        y: u16,
+    },
+}
+
+impl fmt::Display for SchemeViolation {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Self::EmptyPath { path } => write!(f, "path {path} is empty"),
+            Self::UnknownSurface { path, surface } => {
+                write!(
+                    f,
+                    "path {path} names surface {surface}, which does not exist"
+                )
+            }
+            Self::RepeatedSurface { path, surface } => {
+                write!(f, "path {path} lists surface {surface} twice")
+            }
+            Self::OrderConflict { first, second } => write!(
+                f,
+                "paths {first} and {second} order their shared surfaces differently"
+            ),
+            Self::CyclicOrder => f.write_str("the paths' depth orders form a cycle"),
+            Self::CodeCount { given, expected } => {
+                write!(f, "{given} codes given, {expected} needed")
+            }
+            Self::PathDependent { path } => write!(
+                f,
+                "proposition 1: the codes of path {path} are linearly dependent"
+            ),
+            Self::PathUnionDependent { first, second } => write!(
+                f,
+                "proposition 2: the codes of paths {first} and {second} together are \
+                 linearly dependent"
+            ),
+            Self::PathCodesInNodeSpan { first, second } => write!(
+                f,
+                "proposition 3: the sum of the codes of paths {first} and {second} is in \
+                 the span of the node codes"
+            ),
+            Self::NodeCodesInPathCode { first, second } => write!(
+                f,
+                "proposition 4: the sum of the node codes of priorities {first} and \
+                 {second} is a path code"
+            ),
+            Self::NoAssignment { width } => {
+                write!(
+                    f,
+                    "no assignment of {width}-bit codes satisfies propositions 1 and 2"
+                )
+            }
+            Self::SearchGaveUp { width, trials } => write!(
+                f,
+                "the search for {width}-bit codes gave up after {trials} trials"
+            ),
+            Self::UnlistedCode { code, x, y } => write!(
+                f,
+                "pixel ({x}, {y}) has code {code:#b}, which is in no row of the colour \
+                 table (an overlap the occlusion graph omits)"
+            ),
+            Self::UnknownPath { path, x, y } => write!(
+                f,
+                "the screen segment of pixel ({x}, {y}) names path {path}, which does \
+                 not exist"
+            ),
+        }
+    }
 }
 
 /// Why an edge of a prebuilt edge list was rejected
@@ -216,7 +389,7 @@ impl<T: fmt::Debug> fmt::Display for Error<T> {
             Error::ViewportTooLarge { width, height } => write!(
                 f,
                 "target of {width}x{height} pixels exceeds the {0}x{0} maximum",
-                crate::MAX_VIEWPORT
+                MAX_VIEWPORT
             ),
             Error::NonFiniteVertex { vertex } => {
                 write!(f, "vertex {vertex} has a NaN or infinite coordinate")

@@ -15,8 +15,7 @@ use crate::Error;
 /// the same as an unbounded rasterizer's, only slower.
 pub const GUARD_BAND_PX: i32 = 1 << 14;
 
-/// The largest supported target side, in pixels.
-pub const MAX_VIEWPORT: u32 = 8192;
+pub use crate::error::MAX_VIEWPORT;
 
 /// The largest supported number of sub-pixel bits.
 pub const MAX_SUBPIXEL_BITS: u32 = 12;

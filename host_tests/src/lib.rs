@@ -1,5 +1,5 @@
 //! Host-side checks for pbuffer. Two parts, and imports go one way, from the tools to
-//! the library part (`scripts/host-layers` checks it):
+//! the library part (`scripts/import-circles host_tests/src` checks it):
 //!
 //! **The library part**, what the tests judge frames with:
 //! - references, written from CONVENTIONS.md and never from the fixed-point code:

@@ -8,6 +8,7 @@ use fixed::types::extra::U4;
 
 use super::lines::{edge_on_screen, walk_segment};
 use super::transform::FixedView;
+use super::two_squares::cube;
 use super::*;
 use crate::mesh::{HalfEdgeRecord, MeshEdge};
 use crate::{PackedFramebuffer, Projection};
@@ -25,23 +26,6 @@ impl FrameProbe for Masks {
         self.visible[at..at + self.words].copy_from_slice(visible);
         self.hidden[at..at + self.words].copy_from_slice(hidden);
     }
-}
-
-pub(super) fn cube() -> (Vec<[f32; 3]>, Vec<u32>, Vec<u32>) {
-    let v = vec![
-        [-1., -1., -1.],
-        [1., -1., -1.],
-        [1., 1., -1.],
-        [-1., 1., -1.],
-        [-1., -1., 1.],
-        [1., -1., 1.],
-        [1., 1., 1.],
-        [-1., 1., 1.],
-    ];
-    let idx = vec![
-        0, 3, 2, 1, 4, 5, 6, 7, 0, 1, 5, 4, 3, 7, 6, 2, 0, 4, 7, 3, 1, 2, 6, 5,
-    ];
-    (v, idx, (0..=6).map(|f| 4 * f).collect())
 }
 
 fn icosahedron() -> (Vec<[f32; 3]>, Vec<u32>, Vec<u32>) {

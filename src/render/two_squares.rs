@@ -1,6 +1,6 @@
-//! Test scene shared by the id-filling engines' unit tests: two unit-high squares
-//! overlapping in x, seen from +z (orthographic, 32 x 32 px over [-2, 2]^2), drawn
-//! into a packed framebuffer with a probe that keeps the frame's face ids.
+//! Test scenes shared by the engines' unit tests: two unit-high squares overlapping
+//! in x, seen from +z (orthographic, 32 x 32 px over [-2, 2]^2), drawn into a packed
+//! framebuffer with a probe that keeps the frame's face ids; and a cube ([`cube`]).
 
 extern crate std;
 use core::convert::Infallible;
@@ -103,4 +103,22 @@ pub(super) fn frame(
         other => other.widen(),
     })?;
     Ok(probe.0)
+}
+
+/// The cube [-1, 1]^3, faces wound outward: vertices, corners and offsets.
+pub(crate) fn cube() -> (Vec<[f32; 3]>, Vec<u32>, Vec<u32>) {
+    let v = vec![
+        [-1., -1., -1.],
+        [1., -1., -1.],
+        [1., 1., -1.],
+        [-1., 1., -1.],
+        [-1., -1., 1.],
+        [1., -1., 1.],
+        [1., 1., 1.],
+        [-1., 1., 1.],
+    ];
+    let idx = vec![
+        0, 3, 2, 1, 4, 5, 6, 7, 0, 1, 5, 4, 3, 7, 6, 2, 0, 4, 7, 3, 1, 2, 6, 5,
+    ];
+    (v, idx, (0..=6).map(|f| 4 * f).collect())
 }

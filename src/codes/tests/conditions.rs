@@ -4,7 +4,7 @@ use super::*;
 use crate::Error;
 use std::string::ToString;
 
-fn violation<T: fmt::Debug>(result: Result<T, Error>) -> SchemeViolation {
+fn violation<T: core::fmt::Debug>(result: Result<T, Error>) -> SchemeViolation {
     match result {
         Err(Error::Scheme(v)) => v,
         other => panic!("expected a scheme violation, got {other:?}"),

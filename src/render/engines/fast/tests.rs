@@ -301,7 +301,7 @@ fn a_steep_line_entering_from_above_keeps_its_columns() {
 /// The render tests' cube (side 2 about the origin, faces counter-clockwise seen
 /// from outside) without its face at z = 1: a box with one hole.
 fn open_box() -> (Vec<[f32; 3]>, Vec<u32>, Vec<u32>) {
-    let (vertices, mut indices, _) = crate::render::tests::cube();
+    let (vertices, mut indices, _) = crate::render::two_squares::cube();
     // Its second face is the top, [4, 5, 6, 7].
     indices.drain(4..8);
     (vertices, indices, (0..=5).map(|f| 4 * f).collect())
@@ -336,7 +336,7 @@ fn an_inside_out_box_and_a_closed_one_have_no_holes_labelled() {
     }
     let mesh = Mesh::new(&vertices, &indices, &offsets).unwrap();
     assert_eq!(labels(&bake(&mesh).edges), []);
-    let (vertices, indices, offsets) = crate::render::tests::cube();
+    let (vertices, indices, offsets) = crate::render::two_squares::cube();
     let mesh = Mesh::new(&vertices, &indices, &offsets).unwrap();
     assert_eq!(labels(&bake(&mesh).edges), []);
 }
