@@ -11,7 +11,7 @@ use pbuffer::MonoPalette;
 
 use crate::bsp::{with_bsp, DepthRanks};
 use crate::frame::{CameraSpec, EngineSpec, Frame, MeshData, RenderSpec};
-use crate::setup::{IdBuffers, Measured, Scene, SceneStorage};
+use crate::setup::{FrameInputs, IdBuffers, Measured, SceneStorage};
 use crate::setup::{EDGES, POLY};
 
 /// `painter` (faces by farthest depth) and `bsp` (the tree's fragments, walked per
@@ -40,11 +40,11 @@ pub(crate) fn render_painter<Frac: LeEqU32>(
 }
 
 fn paint_with<Frac: LeEqU32>(
-    scene: &Scene<'_>,
+    scene: &FrameInputs<'_>,
     tree: Option<&pbuffer::order::BspTree<'_>>,
     spec: &RenderSpec,
 ) -> Result<Frame, String> {
-    let Scene {
+    let FrameInputs {
         mesh,
         adjacency,
         camera,
@@ -90,7 +90,7 @@ pub(crate) fn render_warnock<Frac: LeEqU32>(
     spec: &RenderSpec,
 ) -> Result<Frame, String> {
     let mut storage = SceneStorage::new(data);
-    let Scene {
+    let FrameInputs {
         mesh,
         adjacency,
         camera,
@@ -142,7 +142,7 @@ pub(crate) fn render_raycast<Frac: LeEqU32>(
     spec: &RenderSpec,
 ) -> Result<Frame, String> {
     let mut storage = SceneStorage::new(data);
-    let Scene {
+    let FrameInputs {
         mesh,
         adjacency,
         camera,
@@ -197,7 +197,7 @@ pub(crate) fn render_newell_paint<Frac: LeEqU32>(
 ) -> Result<Frame, String> {
     use pbuffer::order::NewellSizes;
     let mut storage = SceneStorage::new(data);
-    let Scene {
+    let FrameInputs {
         mesh,
         adjacency,
         camera,

@@ -11,7 +11,7 @@ use pbuffer::render::{
 use pbuffer::{Dashes, MonoPalette};
 
 use crate::frame::{CameraSpec, Frame, MeshData, RenderSpec};
-use crate::setup::{Measured, Scene, SceneStorage};
+use crate::setup::{FrameInputs, Measured, SceneStorage};
 
 /// Active facets and lines the host engine has room for.
 pub const FACETS: usize = 4096;
@@ -40,7 +40,7 @@ pub struct Baked {
 
 impl Baked {
     /// Bakes `scene`'s mesh and edge list.
-    pub fn new(scene: &Scene<'_>) -> Result<Self, String> {
+    pub fn new(scene: &FrameInputs<'_>) -> Result<Self, String> {
         let mut planes = vec![FacePlane::default(); scene.mesh.face_count()];
         let mut edges = vec![CompactEdge::default(); scene.adjacency.edges().len()];
         BakedMesh::bake(&scene.mesh, &scene.adjacency, &mut planes, &mut edges)

@@ -13,7 +13,7 @@ use pbuffer::{GreyPalette, GreyShades, Span, SpanSink, Viewport, ZBufferRenderer
 
 use crate::frame::{CameraSpec, MeshData, ProjectionSpec, RenderSpec};
 use crate::reference3d::RefFrame;
-use crate::setup::{IdBuffers, Scene, SceneStorage};
+use crate::setup::{FrameInputs, IdBuffers, SceneStorage};
 use crate::setup::{EDGES, POLY};
 
 /// The palette of the host's grey frames: black background, white lines, faces
@@ -104,7 +104,7 @@ fn grey_sd<Frac: LeEqU32, D: Depth>(
     palette: &GreyShades<Gray8>,
 ) -> Result<GreyFrame, String> {
     let mut storage = SceneStorage::new(data);
-    let Scene {
+    let FrameInputs {
         mesh,
         adjacency,
         camera,

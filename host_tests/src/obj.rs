@@ -204,11 +204,12 @@ pub fn load_scene(path: Option<&Path>) -> Result<(MeshData, String), String> {
     match path {
         Some(p) if p.to_string_lossy().starts_with("scene:") => {
             let name = p.to_string_lossy()["scene:".len()..].to_string();
-            let names: Vec<&str> = crate::shapes::all_scenes().iter().map(|s| s.name).collect();
-            crate::shapes::all_scenes()
-                .into_iter()
+            let scenes = crate::shapes::all_scenes();
+            let names: Vec<&str> = scenes.iter().map(|s| s.name.as_str()).collect();
+            scenes
+                .iter()
                 .find(|s| s.name == name)
-                .map(|s| (s.mesh, format!("scene:{name}")))
+                .map(|s| (s.mesh.clone(), format!("scene:{name}")))
                 .ok_or_else(|| {
                     format!(
                         "scene:{name}: no such procedural scene (have {})",

@@ -5,7 +5,7 @@ use pbuffer::Viewport;
 
 use crate::frame::{CameraSpec, MeshData, RenderSpec};
 use crate::setup::POLY;
-use crate::setup::{Scene, SceneStorage};
+use crate::setup::{FrameInputs, SceneStorage};
 
 /// One picked pixel: the library's answer, each edge with its end positions.
 #[derive(Clone, Debug)]
@@ -51,7 +51,7 @@ fn pick_s<Frac: fixed::types::extra::LeEqU32>(
     pixels: &[(u16, u16)],
 ) -> Result<Vec<Picked>, String> {
     let mut storage = SceneStorage::new(data);
-    let Scene {
+    let FrameInputs {
         mesh,
         adjacency,
         camera,

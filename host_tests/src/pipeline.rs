@@ -8,7 +8,7 @@ use pbuffer::{CodeFillRenderer, MonoPalette, Visibility, ZBufferRenderer};
 use crate::bsp::{with_bsp, BspFigures, DepthRanks};
 use crate::frame::{CameraSpec, EngineSpec, Frame, MeshData, RenderSpec};
 use crate::setup::{
-    IdBuffers, Measured, Scene, SceneStorage, ACTIVE_EDGES, ACTIVE_FACES, EDGES, POLY,
+    FrameInputs, IdBuffers, Measured, SceneStorage, ACTIVE_EDGES, ACTIVE_FACES, EDGES, POLY,
 };
 
 /// Renders with the library exactly as firmware would (fixed point, banded).
@@ -83,7 +83,7 @@ fn render_sd<Frac: LeEqU32, D: Depth>(
     spec: &RenderSpec,
 ) -> Result<Frame, String> {
     let mut storage = SceneStorage::new(data);
-    let Scene {
+    let FrameInputs {
         mesh,
         adjacency,
         camera,
@@ -144,11 +144,11 @@ fn render_code<Frac: LeEqU32, const WORDS: usize>(
 }
 
 fn render_code_with<Frac: LeEqU32, const WORDS: usize>(
-    scene: &Scene<'_>,
+    scene: &FrameInputs<'_>,
     bsp: Option<(&BspTree<'_>, BspFigures)>,
     spec: &RenderSpec,
 ) -> Result<Frame, String> {
-    let Scene {
+    let FrameInputs {
         mesh,
         adjacency,
         camera,

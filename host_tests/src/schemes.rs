@@ -27,7 +27,7 @@ use crate::frame::{CameraSpec, CullSpec, EngineSpec, Frame, MeshData, ModeSpec, 
 use crate::pipeline::render_frame;
 use crate::reference3d::reference_frame;
 use crate::setup::{
-    camera, AdjacencyStorage, Collect, IdBuffers, Measured, MeshArrays, PackedFrame, Scene,
+    camera, AdjacencyStorage, Collect, FrameInputs, IdBuffers, Measured, MeshArrays, PackedFrame,
     SceneStorage, EDGES, POLY,
 };
 
@@ -419,7 +419,7 @@ fn draw_s<Frac: LeEqU32, const W: usize, const E: usize>(
     coding: &SchemeCoding<'_, W, E>,
 ) -> Result<Frame, SchemeError> {
     let mut storage = SceneStorage::new(data);
-    let Scene {
+    let FrameInputs {
         mesh,
         adjacency,
         camera,

@@ -1,5 +1,5 @@
 //! The library's engines set up on the host, once for every engine: the mesh, its
-//! edge adjacency, camera and settings ([`Scene`], built in [`SceneStorage`] from the
+//! edge adjacency, camera and settings ([`FrameInputs`], built in [`SceneStorage`] from the
 //! specs by [`camera`] and [`settings`]), the lent buffers of a frame ([`IdBuffers`]),
 //! the host's span sink and probe ([`PackedFrame`], `Collect`) and one frame drawn in
 //! the measured region ([`Measured`]). [`crate::pipeline`] picks the engine; every
@@ -18,7 +18,7 @@ use pbuffer::{
 use crate::frame::{CameraSpec, CullSpec, Frame, MeshData, ModeSpec, ProjectionSpec, RenderSpec};
 use crate::measure::measured_region;
 
-/// The owned storage behind a [`Scene`]: the mesh's arrays, its faces' planarity
+/// The owned storage behind a [`FrameInputs`]: the mesh's arrays, its faces' planarity
 /// and its adjacency's.
 pub struct SceneStorage {
     pub arrays: MeshArrays,
@@ -47,7 +47,11 @@ impl SceneStorage {
     /// The library mesh (its faces' planarity kept), its adjacency (crease angle
     /// `spec.crease_deg`), the camera of `cam` and the settings of `spec`, in that
     /// order (the first error is returned).
-    pub fn scene(&mut self, cam: &CameraSpec, spec: &RenderSpec) -> Result<Scene<'_>, String> {
+    pub fn scene(
+        &mut self,
+        cam: &CameraSpec,
+        spec: &RenderSpec,
+    ) -> Result<FrameInputs<'_>, String> {
         let arrays = &self.arrays;
         let mesh = Mesh::new(&arrays.vertices, &arrays.indices, &arrays.offsets)
             .map_err(|e| format!("mesh: {e}"))?;
@@ -61,7 +65,7 @@ impl SceneStorage {
             .map_err(|e| format!("mesh: {e}"))?;
         let build_bytes = self.adjacency.build_bytes();
         let adjacency = self.adjacency.build(&mesh, spec.crease_deg)?;
-        Ok(Scene {
+        Ok(FrameInputs {
             mesh,
             adjacency,
             camera: camera(cam)?,
@@ -72,7 +76,7 @@ impl SceneStorage {
 }
 
 /// What every engine renders from: the mesh, its adjacency, the camera, the settings.
-pub struct Scene<'s> {
+pub struct FrameInputs<'s> {
     pub mesh: Mesh<'s>,
     pub adjacency: EdgeAdjacency<'s>,
     pub camera: Camera,

@@ -2,57 +2,58 @@
 //! sticks), faces counter-clockwise seen from outside, and a three-quarter camera that
 //! sees each whole.
 
+use crate::fit::fit_camera;
 use crate::frame::{CameraSpec, MeshData, ProjectionSpec};
 
-/// A named scene.
+/// A named scene: a mesh and how its camera is chosen. The one scene type of the
+/// inputs: the procedural scenes here, and the models `report` loads.
 #[derive(Clone, Debug)]
 pub struct Scene {
-    pub name: &'static str,
+    pub name: String,
     pub mesh: MeshData,
+    pub framing: Framing,
+}
+
+/// How a [`Scene`]'s default camera is chosen.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Framing {
+    /// The procedural scenes' three-quarter view ([`three_quarter_camera`]).
+    ThreeQuarter,
+    /// A model's view, as `render --fit` frames it ([`fit_camera`], perspective).
+    Fit,
 }
 
 impl Scene {
-    /// The default three-quarter camera of this scene (perspective or orthographic).
+    /// A procedural scene (three-quarter view).
+    fn procedural(name: &str, mesh: MeshData) -> Self {
+        Scene {
+            name: name.into(),
+            mesh,
+            framing: Framing::ThreeQuarter,
+        }
+    }
+
+    /// The default camera of this scene; `ortho` asks the three-quarter view for an
+    /// orthographic projection (a fitted model's view is always perspective).
     pub fn camera(&self, width: usize, height: usize, ortho: bool) -> CameraSpec {
-        three_quarter_camera(&self.mesh, width, height, ortho)
+        match self.framing {
+            Framing::ThreeQuarter => three_quarter_camera(&self.mesh, width, height, ortho),
+            Framing::Fit => fit_camera(&self.mesh, width, height),
+        }
     }
 }
 
 /// All procedural scenes.
 pub fn all_scenes() -> Vec<Scene> {
     vec![
-        Scene {
-            name: "cube",
-            mesh: cube(),
-        },
-        Scene {
-            name: "boxes",
-            mesh: boxes(),
-        },
-        Scene {
-            name: "icosphere",
-            mesh: icosphere(2),
-        },
-        Scene {
-            name: "torus",
-            mesh: torus(24, 12, 1.0, 0.4),
-        },
-        Scene {
-            name: "gear",
-            mesh: gear(12, 0.8, 1.0, 0.3),
-        },
-        Scene {
-            name: "frame",
-            mesh: frame(),
-        },
-        Scene {
-            name: "cyclic",
-            mesh: cyclic_sticks(),
-        },
-        Scene {
-            name: "coplanar",
-            mesh: coplanar_boxes(),
-        },
+        Scene::procedural("cube", cube()),
+        Scene::procedural("boxes", boxes()),
+        Scene::procedural("icosphere", icosphere(2)),
+        Scene::procedural("torus", torus(24, 12, 1.0, 0.4)),
+        Scene::procedural("gear", gear(12, 0.8, 1.0, 0.3)),
+        Scene::procedural("frame", frame()),
+        Scene::procedural("cyclic", cyclic_sticks()),
+        Scene::procedural("coplanar", coplanar_boxes()),
     ]
 }
 

@@ -34,7 +34,7 @@ use crate::frame::{CameraSpec, MeshData, RenderSpec};
 use crate::image::count_set;
 use crate::measure::measured_region;
 use crate::obj::load_obj;
-use crate::setup::{IdBuffers, Scene, SceneStorage};
+use crate::setup::{FrameInputs, IdBuffers, SceneStorage};
 
 mod ram;
 mod report;
@@ -274,7 +274,7 @@ fn draw_sized<const W: usize, const H: usize, const N: usize>(
 
 /// [`code_fill`] with the firmware capacities or a [`ROOMIER`] rung.
 fn code_fill_rung<const W: usize, const H: usize, const N: usize, const WORDS: usize>(
-    scene: &Scene<'_>,
+    scene: &FrameInputs<'_>,
     bsp: Option<(&BspTree<'_>, usize)>,
     band: usize,
     sliced: bool,
@@ -307,7 +307,7 @@ fn code_fill<
     const FACES: usize,
     const EDGES: usize,
 >(
-    scene: &Scene<'_>,
+    scene: &FrameInputs<'_>,
     bsp: Option<(&BspTree<'_>, usize)>,
     band: usize,
     sliced: bool,
@@ -373,7 +373,7 @@ fn code_fill<
 }
 
 fn z_buffer<const W: usize, const H: usize, const N: usize, D: Depth>(
-    scene: &Scene<'_>,
+    scene: &FrameInputs<'_>,
     band: usize,
 ) -> Result<Drawn, Error<Infallible>> {
     type Engine = ZBufferRenderer<U4, FACE_EDGES, POLY>;

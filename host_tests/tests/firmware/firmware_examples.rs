@@ -22,7 +22,7 @@ use pbuffer::{packed_len, DrawMode, PackedFramebuffer, Pattern};
 use scenes::{fnv1a64, panel, suzanne, View};
 
 /// A scene: its mesh arrays, size and cameras.
-struct Scene {
+struct Example {
     name: &'static str,
     vertices: Vec<[f32; 3]>,
     indices: Vec<u32>,
@@ -31,14 +31,14 @@ struct Scene {
     view: fn(u32) -> View,
 }
 
-fn suzanne_scene() -> Scene {
+fn suzanne_scene() -> Example {
     let path = concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/../examples/embedded/models/suzanne.obj"
     );
     let text = std::fs::read_to_string(path).expect("read the examples' suzanne.obj");
     let m = obj::parse(&text, "suzanne.obj").expect("parses");
-    Scene {
+    Example {
         name: "suzanne",
         vertices: m.vertices,
         indices: m.indices,
@@ -48,8 +48,8 @@ fn suzanne_scene() -> Scene {
     }
 }
 
-fn panel_scene() -> Scene {
-    Scene {
+fn panel_scene() -> Example {
+    Example {
         name: "panel",
         vertices: panel::VERTICES.to_vec(),
         indices: panel::INDICES.to_vec(),
@@ -89,7 +89,7 @@ macro_rules! run_scene {
         scanline: $engine:ty, $buffers:ty, [$(($example:expr, $mode:expr)),*]
     ) => {{
         const N: usize = packed_len($w, $h);
-        let s: &Scene = $s;
+        let s: &Example = $s;
         let mesh = Mesh::new(&s.vertices, &s.indices, &s.offsets).expect("mesh");
         let mut store = vec![MeshEdge::EMPTY; s.indices.len()];
         let adjacency = edges(&mesh, &mut store);

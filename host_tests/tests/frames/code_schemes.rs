@@ -228,9 +228,9 @@ fn procedural_scenes_with_a_depth_order_are_drawn_as_the_z_buffer_draws_them() {
         for (w, h) in [(128, 64), (400, 240)] {
             let cam = scene.camera(w, h, false);
             let spec = spec(w, h, ModeSpec::Dashed);
-            let counts = same_or_refused(scene.name, &scene.mesh, &cam, &spec);
+            let counts = same_or_refused(&scene.name, &scene.mesh, &cam, &spec);
             let was_drawn = counts.map(|c| c > 0);
-            assert_eq!(was_drawn, drawn(scene.name), "{} {w}x{h}", scene.name);
+            assert_eq!(was_drawn, drawn(&scene.name), "{} {w}x{h}", scene.name);
             compared = [compared[0] + counts[0], compared[1] + counts[1]];
         }
     }

@@ -139,13 +139,13 @@ fn differing(a: &Frame, b: &Frame) -> (usize, usize, usize) {
 }
 
 /// A random scene and its render settings (the same draws for every engine).
-struct Scene {
+struct Case {
     mesh: MeshData,
     cam: CameraSpec,
     spec: RenderSpec,
 }
 
-fn scenes() -> Vec<Scene> {
+fn scenes() -> Vec<Case> {
     let mut rng = Rng::new(0x5eed_c0de);
     (0..300)
         .map(|k| {
@@ -176,7 +176,7 @@ fn scenes() -> Vec<Scene> {
                 depth_bits: 32,
                 ..RenderSpec::default()
             };
-            Scene { mesh, cam, spec }
+            Case { mesh, cam, spec }
         })
         .collect()
 }

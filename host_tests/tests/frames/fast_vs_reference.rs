@@ -43,7 +43,7 @@ fn fast_engine_is_within_the_accuracy_limits_on_every_scene() {
     for size in [(400, 240), (128, 64)] {
         for name in scene_names(false) {
             let scene = load_scene(name).unwrap_or_else(|e| panic!("{name}: {e}"));
-            let cam = scene.camera(size);
+            let cam = scene.camera(size.0, size.1, false);
             let rf = reference_frame(&scene.mesh, &cam, &spec(EngineSpec::ZBuffer, size))
                 .unwrap_or_else(|e| panic!("{name}: reference: {e}"));
             let frame = render_frame(&scene.mesh, &cam, &spec(EngineSpec::Fast, size))
@@ -152,7 +152,7 @@ fn fast_engine_holds_in_every_mode_projection_and_near_cut() {
     let mut runs = 0;
     for name in ["cube", "boxes", "torus", "suzanne"] {
         let scene = load_scene(name).unwrap_or_else(|e| panic!("{name}: {e}"));
-        let base = scene.camera(size);
+        let base = scene.camera(size.0, size.1, false);
         let d = (0..3)
             .map(|i| (base.eye[i] - base.target[i]).powi(2))
             .sum::<f64>()

@@ -20,7 +20,7 @@ fn check(name: &str) -> Vec<String> {
     let scene = load_scene(name).expect("procedural scene");
     let mut failures = Vec::new();
     for size in SIZES {
-        let cam = scene.camera(size);
+        let cam = scene.camera(size.0, size.1, false);
         let base = RenderSpec {
             width: size.0,
             height: size.1,
@@ -76,7 +76,7 @@ fn recommendation_holds_on_procedural_scenes() {
 #[test]
 fn coplanar_faces_get_four_bits_and_32_bit_depth() {
     let scene = load_scene("coplanar").expect("procedural scene");
-    let cam = scene.camera(SIZES[0]);
+    let cam = scene.camera(SIZES[0].0, SIZES[0].1, false);
     let bounds = scene_bounds(&scene.mesh, &cam, 3).with_coplanar_overlaps(true);
     let viewport = Viewport {
         width: 400,

@@ -101,7 +101,7 @@ pub fn errors_pass(
                 continue;
             }
         };
-        let cam = scene.camera(size);
+        let cam = scene.camera(size.0, size.1, false);
         let rf = match reference_frame(&scene.mesh, &cam, &spec(EngineSpec::ZBuffer, size)) {
             Ok(r) => r,
             Err(e) => {
@@ -158,7 +158,11 @@ pub fn child(key: &str) -> Result<usize, String> {
         .ok_or_else(|| format!("bad size in {key:?}"))?;
     let engine = EngineSpec::by_name(engine).ok_or_else(|| format!("bad engine in {key:?}"))?;
     let scene = load_scene(scene)?;
-    let frame = render_frame(&scene.mesh, &scene.camera((w, h)), &spec(engine, (w, h)))?;
+    let frame = render_frame(
+        &scene.mesh,
+        &scene.camera(w, h, false),
+        &spec(engine, (w, h)),
+    )?;
     Ok(crate::image::count_set(&frame.packed, w, h))
 }
 

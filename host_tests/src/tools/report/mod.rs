@@ -16,10 +16,9 @@ pub mod write;
 
 use std::path::PathBuf;
 
-use crate::fit::fit_camera;
-use crate::frame::{CameraSpec, EngineSpec, MeshData, ModeSpec, RenderSpec};
+use crate::frame::{EngineSpec, ModeSpec, RenderSpec};
 use crate::obj::{load_obj, workspace_root};
-use crate::shapes;
+use crate::shapes::{self, Framing, Scene};
 
 /// Engines of the report: the spec, its name, whether it has a depth buffer. Adding
 /// an engine to the report is one line here.
@@ -181,25 +180,6 @@ pub fn configs(scene: &str, quick: bool) -> Vec<Config> {
     v
 }
 
-/// A scene of the report: a mesh and how its camera is chosen.
-#[derive(Clone, Debug)]
-pub struct Scene {
-    pub name: String,
-    pub mesh: MeshData,
-    /// Procedural (three-quarter camera of `shapes`) or a model (`render --fit`).
-    pub procedural: bool,
-}
-
-impl Scene {
-    pub fn camera(&self, (w, h): (usize, usize)) -> CameraSpec {
-        if self.procedural {
-            shapes::three_quarter_camera(&self.mesh, w, h, false)
-        } else {
-            fit_camera(&self.mesh, w, h)
-        }
-    }
-}
-
 /// `../shared/models/` relative to the workspace root.
 pub fn models_dir() -> PathBuf {
     workspace_root().join("../shared/models")
@@ -208,11 +188,7 @@ pub fn models_dir() -> PathBuf {
 /// Loads scene `name` (procedural or model); `Err` with the reason when absent.
 pub fn load_scene(name: &str) -> Result<Scene, String> {
     if let Some(s) = shapes::all_scenes().into_iter().find(|s| s.name == name) {
-        return Ok(Scene {
-            name: name.into(),
-            mesh: s.mesh,
-            procedural: true,
-        });
+        return Ok(s);
     }
     let path = models_dir().join(format!("{name}.obj"));
     if !path.is_file() {
@@ -221,7 +197,7 @@ pub fn load_scene(name: &str) -> Result<Scene, String> {
     Ok(Scene {
         name: name.into(),
         mesh: load_obj(&path)?,
-        procedural: false,
+        framing: Framing::Fit,
     })
 }
 
@@ -264,7 +240,10 @@ pub fn child(key: &str) -> Result<usize, String> {
         .ok_or_else(|| format!("bad size in {key:?}"))?;
     let config = Config::from_key(config).ok_or_else(|| format!("bad config in {key:?}"))?;
     let scene = load_scene(scene)?;
-    let frame =
-        crate::pipeline::render_frame(&scene.mesh, &scene.camera((w, h)), &config.spec((w, h)))?;
+    let frame = crate::pipeline::render_frame(
+        &scene.mesh,
+        &scene.camera(w, h, false),
+        &config.spec((w, h)),
+    )?;
     Ok(crate::image::count_set(&frame.packed, w, h))
 }

@@ -166,7 +166,7 @@ pub fn errors_pass(quick: bool, res: &mut Results) {
             }
         };
         for size in sizes(quick) {
-            let cam = scene.camera(size);
+            let cam = scene.camera(size.0, size.1, false);
             let base = RenderSpec {
                 width: size.0,
                 height: size.1,
