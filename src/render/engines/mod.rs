@@ -41,6 +41,23 @@
 //!
 //! [`Drawing`]: crate::Drawing
 
+/// `Default` for an engine's renderer: its `const fn new()`. Every renderer is
+/// generic over the sub-pixel bits `Frac` (held by a `PhantomData<Frac>` field) and
+/// some `usize` capacities, starts from empty working memory, and derives `Debug`;
+/// what `new` fills in differs per engine, so each writes its own `new` and names its
+/// capacities here: `default_is_new!(ZBufferRenderer<EDGES, POLY>);`.
+macro_rules! default_is_new {
+    ($renderer:ident<$($capacity:ident),+>) => {
+        impl<Frac: ::fixed::types::extra::LeEqU32, $(const $capacity: usize),+> Default
+            for $renderer<Frac, $($capacity),+>
+        {
+            fn default() -> Self {
+                Self::new()
+            }
+        }
+    };
+}
+
 mod codefill;
 mod fast;
 mod painter;

@@ -43,13 +43,7 @@ pub struct PainterRenderer<Frac: LeEqU32, const EDGES: usize, const POLY: usize>
     _frac: PhantomData<Frac>,
 }
 
-impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> Default
-    for PainterRenderer<Frac, EDGES, POLY>
-{
-    fn default() -> Self {
-        Self::new()
-    }
-}
+default_is_new!(PainterRenderer<EDGES, POLY>);
 
 impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> PainterRenderer<Frac, EDGES, POLY> {
     /// Empty working memory.

@@ -187,13 +187,7 @@ pub struct SchemeRenderer<Frac: LeEqU32, const EDGES: usize, const POLY: usize> 
     _frac: PhantomData<Frac>,
 }
 
-impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> Default
-    for SchemeRenderer<Frac, EDGES, POLY>
-{
-    fn default() -> Self {
-        Self::new()
-    }
-}
+default_is_new!(SchemeRenderer<EDGES, POLY>);
 
 impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> SchemeRenderer<Frac, EDGES, POLY> {
     /// Empty working memory.

@@ -191,18 +191,7 @@ pub struct CodeFillRenderer<
     _frac: PhantomData<Frac>,
 }
 
-impl<
-        Frac: LeEqU32,
-        const WORDS: usize,
-        const FACES: usize,
-        const EDGES: usize,
-        const POLY: usize,
-    > Default for CodeFillRenderer<Frac, WORDS, FACES, EDGES, POLY>
-{
-    fn default() -> Self {
-        Self::new()
-    }
-}
+default_is_new!(CodeFillRenderer<WORDS, FACES, EDGES, POLY>);
 
 /// No face (id 0), all zero: what an empty slot holds (so that a `static` engine
 /// lands in `.bss`, not in `.data`, which costs its size in flash too; a face writes

@@ -169,13 +169,7 @@ pub struct FastRenderer<Frac: LeEqU32, const FACETS: usize, const LINES: usize> 
     _frac: PhantomData<Frac>,
 }
 
-impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> Default
-    for FastRenderer<Frac, FACETS, LINES>
-{
-    fn default() -> Self {
-        Self::new()
-    }
-}
+default_is_new!(FastRenderer<FACETS, LINES>);
 
 /// Reads facet corners from the vertex cache or the clip pool.
 struct Source<'a, 'm> {

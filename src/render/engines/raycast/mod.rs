@@ -183,11 +183,7 @@ pub struct RaycastRenderer<Frac, const POLY: usize> {
     _frac: PhantomData<Frac>,
 }
 
-impl<Frac: LeEqU32, const POLY: usize> Default for RaycastRenderer<Frac, POLY> {
-    fn default() -> Self {
-        Self::new()
-    }
-}
+default_is_new!(RaycastRenderer<POLY>);
 
 impl<Frac: LeEqU32, const POLY: usize> RaycastRenderer<Frac, POLY> {
     /// A renderer that has drawn nothing yet.

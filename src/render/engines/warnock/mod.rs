@@ -166,11 +166,7 @@ pub struct WarnockRenderer<Frac: LeEqU32, const POLY: usize> {
     _frac: PhantomData<Frac>,
 }
 
-impl<Frac: LeEqU32, const POLY: usize> Default for WarnockRenderer<Frac, POLY> {
-    fn default() -> Self {
-        Self::new()
-    }
-}
+default_is_new!(WarnockRenderer<POLY>);
 
 impl<Frac: LeEqU32, const POLY: usize> WarnockRenderer<Frac, POLY> {
     /// A renderer (it keeps nothing between frames).

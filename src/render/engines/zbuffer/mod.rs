@@ -49,13 +49,7 @@ pub struct ZBufferRenderer<Frac: LeEqU32, const EDGES: usize, const POLY: usize>
     _frac: PhantomData<Frac>,
 }
 
-impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> Default
-    for ZBufferRenderer<Frac, EDGES, POLY>
-{
-    fn default() -> Self {
-        Self::new()
-    }
-}
+default_is_new!(ZBufferRenderer<EDGES, POLY>);
 
 impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac, EDGES, POLY> {
     /// Empty working memory.
