@@ -160,24 +160,21 @@ impl Seams<'_> {
 /// Makes fragments watertight (see [`Seams`]): inserts into every fragment edge the
 /// split points of its root segment that lie strictly between its ends, in order.
 ///
-/// `vertices` are all vertices in use (the mesh's, then the split points from
-/// `base` on), `roots[x - base]` the root segment of split point `x`; the fragments
-/// are `offsets[..=fragments]` over `indices[..index_count]` (CSR). Sorts the split
-/// points in `work` and rewrites the CSR arrays in place, back to front. Returns the
-/// new index count and the `work` words used. [`Error::CapacityExceeded`] when
-/// `work` cannot hold the split points or `indices` the inserted ones (exact need).
-#[allow(clippy::too_many_arguments)]
+/// `seams.vertices` are all vertices in use (the mesh's, then the split points from
+/// `seams.base` on); the fragments are `offsets[..=fragments]` over
+/// `indices[..index_count]` (CSR). Sorts the split points in `work` and rewrites the
+/// CSR arrays in place, back to front. Returns the new index count and the `work`
+/// words used. [`Error::CapacityExceeded`] when `work` cannot hold the split points
+/// or `indices` the inserted ones (exact need).
 pub(super) fn insert_seam_vertices(
-    vertices: &[[f32; 3]],
-    base: usize,
-    roots: &[[u32; 2]],
+    seams: Seams<'_>,
     indices: &mut [u32],
     index_count: usize,
     offsets: &mut [u32],
     fragments: usize,
     work: &mut [u32],
 ) -> Result<(usize, usize), Error> {
-    let splits = vertices.len().saturating_sub(base);
+    let splits = seams.vertices.len().saturating_sub(seams.base);
     let capacity = work.len();
     let sorted = work.get_mut(..splits).ok_or(Error::CapacityExceeded {
         needed: splits,
@@ -185,12 +182,11 @@ pub(super) fn insert_seam_vertices(
     })?;
     for (k, s) in sorted.iter_mut().enumerate() {
         // Vertex indices fit u32 (the split points were numbered by u32).
-        *s = base.saturating_add(k) as u32;
+        *s = seams.base.saturating_add(k) as u32;
     }
     let seams = Seams {
-        vertices,
-        base,
-        roots: roots.get(..splits).unwrap_or(roots),
+        roots: seams.roots.get(..splits).unwrap_or(seams.roots),
+        ..seams
     };
     seams.sort(sorted);
     let sorted: &[u32] = sorted;

@@ -2,11 +2,10 @@
 
 use embedded_graphics_core::pixelcolor::{BinaryColor, PixelColor};
 
-use super::lines::LineMasks;
+use super::lines::Band;
 use super::transform::ProjectedVertex;
-use super::{bit, DrawMode, FrameCtx, Settings};
+use super::{bit, DrawMode, FrameCtx};
 use crate::mesh::Viewpoint;
-use crate::render::band::IdBand;
 use crate::{Error, Span, SpanSink};
 
 /// The colours of a frame.
@@ -136,17 +135,19 @@ pub(crate) fn shade(ctx: &FrameCtx<'_, '_>, view: &Viewpoint, f: usize) -> u8 {
 }
 
 /// Sends the band's rows to the sink; returns the number of spans sent.
-#[allow(clippy::too_many_arguments)]
 pub(crate) fn emit_band<K: SpanSink, P: Palette<Color = K::Color>, R: FrameProbe>(
     ctx: &FrameCtx<'_, '_>,
-    settings: &Settings,
-    band: &IdBand<'_>,
-    masks: &LineMasks<'_>,
+    band: &Band<'_>,
     drawn: &[u32],
     palette: &P,
     sink: &mut K,
     probe: &mut R,
 ) -> Result<u32, K::Error> {
+    let Band {
+        ids: band,
+        lines: masks,
+    } = band;
+    let settings = ctx.settings;
     let width = usize::from(band.width);
     let mut spans = 0u32;
     let mut shade_of: (u16, u8) = (0, 0);
@@ -222,15 +223,12 @@ pub(crate) fn emit_band<K: SpanSink, P: Palette<Color = K::Color>, R: FrameProbe
 /// masks) to spans. [`Flat`] is [`emit_band`]; the grey coverage mode is another.
 pub(crate) trait Compose<K: SpanSink> {
     /// Sends the band's rows to the sink; returns the number of spans sent.
-    #[allow(clippy::too_many_arguments)]
     fn band<R: FrameProbe>(
         &mut self,
         ctx: &FrameCtx<'_, '_>,
-        settings: &Settings,
         vertices: &[ProjectedVertex],
         drawn: &[u32],
-        band: &IdBand<'_>,
-        masks: &LineMasks<'_>,
+        band: &Band<'_>,
         sink: &mut K,
         probe: &mut R,
     ) -> Result<u32, Error<K::Error>>;
@@ -243,14 +241,12 @@ impl<K: SpanSink, P: Palette<Color = K::Color>> Compose<K> for Flat<'_, P> {
     fn band<R: FrameProbe>(
         &mut self,
         ctx: &FrameCtx<'_, '_>,
-        settings: &Settings,
         _: &[ProjectedVertex],
         drawn: &[u32],
-        band: &IdBand<'_>,
-        masks: &LineMasks<'_>,
+        band: &Band<'_>,
         sink: &mut K,
         probe: &mut R,
     ) -> Result<u32, Error<K::Error>> {
-        emit_band(ctx, settings, band, masks, drawn, self.0, sink, probe).map_err(Error::Target)
+        emit_band(ctx, band, drawn, self.0, sink, probe).map_err(Error::Target)
     }
 }

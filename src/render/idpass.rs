@@ -7,7 +7,7 @@
 use embedded_graphics_core::pixelcolor::PixelColor;
 
 use super::compose::{Compose, FrameProbe};
-use super::lines::{line_pass, LineMasks};
+use super::lines::{line_pass, Band, LineMasks};
 use super::transform::ProjectedVertex;
 use super::{band_rows, begin_frame, FrameCtx, Settings, Stats};
 use crate::camera::Camera;
@@ -105,6 +105,26 @@ pub(crate) struct FrameInput<'a, 'm> {
     pub s: u32,
 }
 
+impl<'a, 'm> FrameInput<'a, 'm> {
+    /// A frame of `mesh` at its own vertex positions, with S = `s` sub-pixel bits.
+    pub fn of_mesh(
+        mesh: &'a Mesh<'m>,
+        edges: &'a EdgeAdjacency<'a>,
+        camera: &'a Camera,
+        settings: &'a Settings,
+        s: u32,
+    ) -> Self {
+        Self {
+            mesh,
+            positions: mesh.vertices(),
+            edges,
+            camera,
+            settings,
+            s,
+        }
+    }
+}
+
 /// Renders one frame with `pass` deciding the visible faces and `composer` turning
 /// each finished band into spans (`compose::Flat` for a palette).
 pub(crate) fn render_ids<const POLY: usize, E: IdPass, K: SpanSink, C: Compose<K>, R: FrameProbe>(
@@ -128,13 +148,8 @@ where
         ..Stats::default()
     };
     let ctx = begin_frame(
-        input.mesh,
-        input.positions,
-        input.edges,
-        input.camera,
-        input.settings,
+        input,
         viewport,
-        input.s,
         ws.vertices,
         ws.drawn,
         ws.features,
@@ -154,47 +169,40 @@ where
         pass.begin(&ctx, vertices, drawn).map_err(Error::widen)?;
     }
     let keeps_rows = pass.keeps_rows() && settings.mode.needs_depth();
-    let mut band = IdBand::new(ids, width);
-    let mut masks = LineMasks {
-        words: lines,
-        row_words,
-        rows: 0,
+    let mut band = Band {
+        ids: IdBand::new(ids, width),
+        lines: LineMasks {
+            words: lines,
+            row_words,
+            rows: 0,
+        },
     };
     let mut top = 0u16;
     while top < height && band_rows > 0 {
         let rows = band_rows.min(height - top);
+        let ids = &mut band.ids;
         let fresh = if keeps_rows {
-            band.advance(top, rows, height)
+            ids.advance(top, rows, height)
         } else {
-            band.held = 0;
-            band.advance(top, rows, height);
-            let n = usize::from(width) * usize::from(band.held);
-            if let Some(held) = band.ids.get_mut(..n) {
+            ids.held = 0;
+            ids.advance(top, rows, height);
+            let n = usize::from(width) * usize::from(ids.held);
+            if let Some(held) = ids.ids.get_mut(..n) {
                 held.fill(0);
             }
-            band.first
+            ids.first
         };
-        masks.reset(rows);
+        band.lines.reset(rows);
         stats.bands += 1;
         if settings.mode.needs_depth() {
             stats.spans += pass
-                .fill(&ctx, vertices, drawn, &mut band, fresh)
+                .fill(&ctx, vertices, drawn, &mut band.ids, fresh)
                 .map_err(Error::widen)?;
         }
         if settings.mode.draws_lines() {
-            line_pass::<POLY>(
-                &ctx,
-                vertices,
-                drawn,
-                features,
-                input.edges,
-                settings,
-                &band,
-                &mut masks,
-            );
+            line_pass::<POLY>(&ctx, vertices, drawn, features, input.edges, &mut band);
         }
-        stats.spans +=
-            composer.band(&ctx, settings, vertices, drawn, &band, &masks, sink, probe)?;
+        stats.spans += composer.band(&ctx, vertices, drawn, &band, sink, probe)?;
         top += rows;
     }
     pass.finish(&mut stats).map_err(Error::widen)?;

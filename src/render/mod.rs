@@ -45,12 +45,12 @@ pub use pick::{pick, Pick, PickWorkspace, PickedEdge};
 pub use transform::{ClipVertex, ProjectedVertex, ScreenVertex};
 
 use crate::bits::{bit, set_bit};
-use crate::camera::Camera;
-use crate::mesh::{EdgeAdjacency, Mesh, Viewpoint};
+use crate::mesh::{Mesh, Viewpoint};
 // The engines check their buffers with it as `super::need`.
 pub(crate) use crate::error::need;
 use crate::{Error, Pattern, Viewport};
 use band::IdBand;
+use idpass::FrameInput;
 use transform::FixedView;
 
 /// What a frame shows.
@@ -216,6 +216,7 @@ struct FrameCtx<'f, 'm> {
     mesh: &'f Mesh<'m>,
     /// The world positions the vertex cache was made from.
     positions: &'f [[f32; 3]],
+    settings: &'f Settings,
     view: FixedView,
     s: u32,
     viewport: Viewport,
@@ -254,24 +255,27 @@ fn band_rows(viewport: Viewport, samples: usize, line_words: usize) -> Result<u1
     Ok(rows)
 }
 
-/// The shared start of a frame: checks the lent per-frame storage, transforms every
-/// vertex of `positions` (the mesh's vertices, or a depth order's fragment vertices,
-/// which begin with them), marks the drawn faces and this view's feature edges, and
-/// counts them in `stats`.
-#[allow(clippy::too_many_arguments)]
+/// The shared start of a frame of `input` in `viewport`: checks the lent per-frame
+/// storage, transforms every vertex of `input.positions` (the mesh's vertices, or a
+/// depth order's fragment vertices, which begin with them) into `vertices`, marks the
+/// drawn faces (`drawn`) and this view's feature edges (`features`), and counts them
+/// in `stats`.
 fn begin_frame<'f, 'm>(
-    mesh: &'f Mesh<'m>,
-    positions: &'f [[f32; 3]],
-    edges: &EdgeAdjacency<'_>,
-    camera: &Camera,
-    settings: &Settings,
+    input: &FrameInput<'f, 'm>,
     viewport: Viewport,
-    s: u32,
     vertices: &mut [ProjectedVertex],
     drawn: &mut [u32],
     features: &mut [u32],
     stats: &mut Stats,
 ) -> Result<FrameCtx<'f, 'm>, Error> {
+    let FrameInput {
+        mesh,
+        positions,
+        edges,
+        camera,
+        settings,
+        s,
+    } = *input;
     let faces = mesh.face_count();
     need(positions.len().max(mesh.vertices().len()), vertices.len())?;
     need(faces.div_ceil(32), drawn.len())?;
@@ -317,6 +321,7 @@ fn begin_frame<'f, 'm>(
     Ok(FrameCtx {
         mesh,
         positions,
+        settings,
         view,
         s,
         viewport,

@@ -6,6 +6,7 @@
 use fixed::types::extra::LeEqU32;
 use heapless::Vec;
 
+use super::idpass::FrameInput;
 use super::lines::{edge_on_screen, walk_segment, Bend, REACH_COVERING};
 use super::transform::{ProjectedVertex, ScreenVertex};
 use super::{begin_frame, bit, face_polygon, need, Settings, Stats};
@@ -74,14 +75,10 @@ pub fn pick<Frac: LeEqU32, const POLY: usize>(
     }
     let mut stats = Stats::default();
     let s = Subpixel::<Frac>::BITS;
+    let input = FrameInput::of_mesh(mesh, adjacency, camera, settings, s);
     let ctx = begin_frame(
-        mesh,
-        mesh.vertices(),
-        adjacency,
-        camera,
-        settings,
+        &input,
         viewport,
-        s,
         ws.vertices,
         ws.drawn,
         ws.features,

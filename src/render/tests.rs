@@ -10,7 +10,8 @@ use super::lines::{edge_on_screen, walk_segment};
 use super::transform::FixedView;
 use super::two_squares::cube;
 use super::*;
-use crate::mesh::{HalfEdgeRecord, MeshEdge};
+use crate::camera::Camera;
+use crate::mesh::{EdgeAdjacency, HalfEdgeRecord, MeshEdge};
 use crate::{PackedFramebuffer, Projection};
 
 /// Keeps the whole frame's line masks.
@@ -224,6 +225,7 @@ fn convex_solids_never_draw_a_visible_edge_pixel_dashed() {
             let ctx = FrameCtx {
                 mesh: &mesh,
                 positions: &v,
+                settings: &Settings::default(),
                 view,
                 s: 4,
                 viewport: Viewport {

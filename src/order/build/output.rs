@@ -159,10 +159,13 @@ impl<'s> Output<'s> {
         let vertices: &[[f32; 3]] = self.vertices;
         let roots: &[[u32; 2]] = self.seams;
         let splits = self.vertex_count.saturating_sub(self.base);
+        let seams = Seams {
+            vertices: vertices.get(..self.vertex_count).unwrap_or(vertices),
+            base: self.base,
+            roots: roots.get(..splits).unwrap_or(roots),
+        };
         let (index_count, words) = insert_seam_vertices(
-            vertices.get(..self.vertex_count).unwrap_or(vertices),
-            self.base,
-            roots.get(..splits).unwrap_or(roots),
+            seams,
             self.indices,
             self.index_count,
             self.offsets,

@@ -433,16 +433,13 @@ impl<'a> Sorter<'a, '_, '_> {
         if points > list.len() {
             return Err(Self::err(points.saturating_mul(3), work_words));
         }
-        let (index_count, _) = insert_seam_vertices(
+        let seams = Seams {
             vertices,
             base,
             roots,
-            indices,
-            index_count,
-            offsets,
-            live,
-            list,
-        )?;
+        };
+        let (index_count, _) =
+            insert_seam_vertices(seams, indices, index_count, offsets, live, list)?;
         let indices: &'a [u32] = indices;
         let offsets: &'a [u32] = offsets;
         let source: &'a [u16] = source;

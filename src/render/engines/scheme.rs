@@ -237,14 +237,7 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> SchemeRenderer<Frac, 
             }));
         }
         need(usize::from(sink.viewport().width), codes.len()).map_err(Error::widen)?;
-        let input = FrameInput {
-            mesh,
-            positions: mesh.vertices(),
-            edges,
-            camera,
-            settings,
-            s: Subpixel::<Frac>::BITS,
-        };
+        let input = FrameInput::of_mesh(mesh, edges, camera, settings, Subpixel::<Frac>::BITS);
         let mut pass = Fill::<Frac, EDGES, POLY, W, E> {
             scan: &mut self.scan,
             _frac: PhantomData,

@@ -9,7 +9,7 @@ mod bend;
 pub(crate) use bend::Bend;
 
 use super::transform::{ProjectedVertex, ScreenVertex};
-use super::{bit, face_polygon, FrameCtx, Settings};
+use super::{bit, face_polygon, FrameCtx};
 use crate::mesh::{face_owns_edge, EdgeAdjacency, EdgeKind, Mesh, MeshEdge};
 use crate::render::band::IdBand;
 use crate::render::depth::coverage::covers;
@@ -58,6 +58,16 @@ impl LineMasks<'_> {
             self.words.get(hidden..hidden + n).unwrap_or(&[]),
         )
     }
+}
+
+/// A band as the frame loop's line pass and composition see it: its face ids (own
+/// rows and apron) and its line masks.
+#[derive(Debug)]
+pub(crate) struct Band<'s> {
+    /// The face ids, filled by the engine's pass.
+    pub ids: IdBand<'s>,
+    /// The line pixels of the band's own rows, drawn by the line pass.
+    pub lines: LineMasks<'s>,
 }
 
 /// One pixel of a projected edge, with the edge point it stands for.
@@ -205,21 +215,23 @@ impl Stepper {
     }
 }
 
-/// Draws the feature edges that reach the band into the masks. Bands come top to
-/// bottom, each below the last: an edge that ends above the next band (or is out of
-/// view) leaves `features`, so that later bands do not ask it again.
-#[allow(clippy::too_many_arguments)]
+/// Draws the feature edges that reach the band into its line masks. Bands come top
+/// to bottom, each below the last: an edge that ends above the next band (or is out
+/// of view) leaves `features`, so that later bands do not ask it again.
 pub(crate) fn line_pass<const POLY: usize>(
     ctx: &FrameCtx<'_, '_>,
     vertices: &[ProjectedVertex],
     drawn: &[u32],
     features: &mut [u32],
     edges: &EdgeAdjacency<'_>,
-    settings: &Settings,
-    band: &IdBand<'_>,
-    masks: &mut LineMasks<'_>,
+    band: &mut Band<'_>,
 ) {
-    let hide = settings.mode.needs_depth();
+    let Band {
+        ids: band,
+        lines: masks,
+    } = band;
+    let band: &IdBand<'_> = band;
+    let hide = ctx.settings.mode.needs_depth();
     // The last face tested for covering an edge point, with its polygon and plane.
     let mut cache = FaceCache::<POLY>::new();
     let all = edges.edges();

@@ -25,6 +25,9 @@ impl<
 {
     /// As [`scan_row`](Self::scan_row), with the row's codes in `codes` (width x
     /// words per pixel, then a bit per pixel), all zero on entry and on return.
+    // The frame, the surfaces, the vertex cache and the face order stay apart here
+    // and in `scan_row`: passed as one struct, suzanne-scanline's M4 frame took
+    // 0.6 % more instructions.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn scan_row_sliced(
         &mut self,

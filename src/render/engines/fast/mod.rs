@@ -94,7 +94,7 @@ use facets::{facet, ClipPolygon, CornerSource, Corners, Facet};
 use holes::HoleBoxes;
 use lines::{line_row, ActiveLine, Beside, FaceSlopes, GapMask, LineTest, NoGaps};
 use polygon::{convex, folds, turns_away};
-use row_out::{emit_row, Shades};
+use row_out::{emit_row, FaceRow, Shades};
 use view::{guard_px, ScreenMap};
 
 /// The most sub-pixel bits the fast engine takes (its screen coordinates are 16
@@ -170,6 +170,15 @@ pub struct FastRenderer<Frac: LeEqU32, const FACETS: usize, const LINES: usize> 
 }
 
 default_is_new!(FastRenderer<FACETS, LINES>);
+
+/// The frame's mesh on screen: the baked mesh, the frame's camera and screen, and
+/// the vertex cache made with them.
+#[derive(Clone, Copy)]
+struct OnScreen<'a, 'm> {
+    baked: &'a BakedMesh<'m>,
+    map: &'a ScreenMap,
+    cache: &'a [FastVertex],
+}
 
 /// Reads facet corners from the vertex cache or the clip pool.
 struct Source<'a, 'm> {

@@ -86,21 +86,30 @@ impl<'a> Shades<'a> {
     }
 }
 
-/// Sends row `y` to `sink`: `row` holds the nearest face entries (none outside
-/// columns `faces`), `visible` and `hidden` the line masks (`visible` becomes the
-/// drawn line pixels). Returns the spans sent.
-#[allow(clippy::too_many_arguments)]
+/// A finished row: row `y`'s nearest face entries, none of them a face outside
+/// `columns.0 .. columns.1`.
+pub(super) struct FaceRow<'a> {
+    pub y: u16,
+    pub cells: &'a [u32],
+    pub columns: (usize, usize),
+}
+
+/// Sends `finished` to `sink`: `visible` and `hidden` are its line masks (`visible`
+/// becomes the drawn line pixels). Returns the spans sent.
 pub(super) fn emit_row<K: SpanSink, P: Palette<Color = K::Color>>(
-    y: u16,
+    finished: FaceRow<'_>,
     settings: &Settings,
-    row: &[u32],
-    faces: (usize, usize),
     visible: &mut [u32],
     hidden: &mut [u32],
     palette: &P,
     shades: &mut Shades<'_>,
     sink: &mut K,
 ) -> Result<u32, K::Error> {
+    let FaceRow {
+        y,
+        cells: row,
+        columns: faces,
+    } = finished;
     let width = row.len();
     let mut runs = Runs {
         y,

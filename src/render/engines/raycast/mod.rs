@@ -228,14 +228,7 @@ impl<Frac: LeEqU32, const POLY: usize> RaycastRenderer<Frac, POLY> {
         let sizes = RaycastStorage::sizes(mesh.face_count());
         need(sizes.faces, storage.faces.len()).map_err(Error::widen)?;
         need(sizes.nodes, storage.nodes.len()).map_err(Error::widen)?;
-        let input = FrameInput {
-            mesh,
-            positions: mesh.vertices(),
-            edges,
-            camera,
-            settings,
-            s: Subpixel::<Frac>::BITS,
-        };
+        let input = FrameInput::of_mesh(mesh, edges, camera, settings, Subpixel::<Frac>::BITS);
         let mut pass = Cast::<POLY> {
             nodes: storage.nodes,
             faces: storage.faces,

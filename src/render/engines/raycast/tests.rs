@@ -93,6 +93,14 @@ enum Engine {
     ZBuffer,
 }
 
+/// A frame `w` x `h` pixels, drawn in bands of `band` rows.
+#[derive(Clone, Copy)]
+struct Frame {
+    w: usize,
+    h: usize,
+    band: usize,
+}
+
 /// Renders `scene` (culling off, surfaces) at `w` x `h` in bands of `band` rows;
 /// returns every pixel's id and the engine's figures.
 fn render(
@@ -111,23 +119,23 @@ fn render(
     let sizes = RaycastStorage::sizes(mesh.face_count());
     let mut nodes = vec![BvhNode::default(); sizes.nodes];
     let mut faces = vec![RayFace::default(); sizes.faces];
-    render_with(
-        &mesh, &adj, camera, w, h, band, engine, &mut nodes, &mut faces,
-    )
+    let storage = RaycastStorage {
+        nodes: &mut nodes,
+        faces: &mut faces,
+    };
+    render_with(&mesh, &adj, camera, Frame { w, h, band }, engine, storage)
 }
 
-#[allow(clippy::too_many_arguments)]
+/// [`render`] of a built mesh, the ray-casting engine in `storage`.
 fn render_with(
     mesh: &Mesh<'_>,
     adj: &EdgeAdjacency<'_>,
     camera: &Camera,
-    w: usize,
-    h: usize,
-    band: usize,
+    frame: Frame,
     engine: Engine,
-    nodes: &mut [BvhNode],
-    faces: &mut [RayFace],
+    mut storage: RaycastStorage<'_>,
 ) -> Result<(Vec<u16>, RaycastFigures), Error> {
+    let Frame { w, h, band } = frame;
     let settings = Settings {
         mode: DrawMode::Surfaces,
         cull: Cull::Off,
@@ -157,7 +165,6 @@ fn render_with(
                 ids: &mut ids,
                 lines: &mut lines,
             };
-            let mut storage = RaycastStorage { nodes, faces };
             let mut r = RaycastRenderer::<U4, 16>::new();
             r.render(
                 mesh,
@@ -304,7 +311,16 @@ fn too_little_storage_is_an_error_with_the_size_needed() {
     let run = |nodes: usize, faces: usize| {
         let mut n = vec![BvhNode::default(); nodes];
         let mut f = vec![RayFace::default(); faces];
-        render_with(&mesh, &adj, &cam, W, H, H, Engine::Raycast, &mut n, &mut f).map(|r| r.0)
+        let storage = RaycastStorage {
+            nodes: &mut n,
+            faces: &mut f,
+        };
+        let frame = Frame {
+            w: W,
+            h: H,
+            band: H,
+        };
+        render_with(&mesh, &adj, &cam, frame, Engine::Raycast, storage).map(|r| r.0)
     };
     assert_eq!(
         run(5, 2).unwrap_err(),

@@ -196,14 +196,7 @@ impl<Frac: LeEqU32, const POLY: usize> WarnockRenderer<Frac, POLY> {
     where
         K::Color: PixelColor,
     {
-        let input = FrameInput {
-            mesh,
-            positions: mesh.vertices(),
-            edges,
-            camera,
-            settings,
-            s: Subpixel::<Frac>::BITS,
-        };
+        let input = FrameInput::of_mesh(mesh, edges, camera, settings, Subpixel::<Frac>::BITS);
         let mut pass = Subdivide::<POLY> { storage, count: 0 };
         render_ids::<POLY, _, _, _, _>(&mut pass, &input, ws, &mut Flat(palette), sink, probe)
     }

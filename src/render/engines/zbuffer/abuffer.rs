@@ -21,13 +21,12 @@
 use embedded_graphics_core::pixelcolor::{Gray8, GrayColor, PixelColor};
 use heapless::Vec;
 
-use crate::render::band::IdBand;
 use crate::render::compose::{self, shade, Compose, FrameProbe, SolidPalette};
 use crate::render::depth::coverage::covers;
 use crate::render::depth::plane::DepthPlane;
-use crate::render::lines::LineMasks;
+use crate::render::lines::Band;
 use crate::render::transform::{ProjectedVertex, ScreenVertex};
-use crate::render::{bit, face_polygon, DrawMode, FrameCtx, Settings};
+use crate::render::{bit, face_polygon, DrawMode, FrameCtx};
 use crate::{Error, Span, SpanSink};
 
 /// The fewest sub-pixel bits for which the sub-samples, at odd eighths of a pixel,
@@ -399,22 +398,25 @@ impl<K: SpanSink, G: GreyPalette<Color = K::Color>, const POLY: usize> Compose<K
     fn band<R: FrameProbe>(
         &mut self,
         ctx: &FrameCtx<'_, '_>,
-        settings: &Settings,
         vertices: &[ProjectedVertex],
         drawn: &[u32],
-        band: &IdBand<'_>,
-        masks: &LineMasks<'_>,
+        band: &Band<'_>,
         sink: &mut K,
         probe: &mut R,
     ) -> Result<u32, Error<K::Error>> {
+        let settings = ctx.settings;
         if !settings.mode.draws_faces() {
             let lines = SolidPalette {
                 line: self.palette.line(),
                 face: None,
             };
-            return compose::emit_band(ctx, settings, band, masks, drawn, &lines, sink, probe)
+            return compose::emit_band(ctx, band, drawn, &lines, sink, probe)
                 .map_err(Error::Target);
         }
+        let Band {
+            ids: band,
+            lines: masks,
+        } = band;
         let background = self.palette.background();
         self.find_small(ctx, vertices, drawn, band.top, band.top + band.rows)
             .map_err(Error::widen)?;

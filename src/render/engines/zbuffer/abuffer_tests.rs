@@ -10,7 +10,7 @@ use fixed::types::extra::{U1, U4};
 
 use super::*;
 use crate::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
-use crate::render::{Cull, ProjectedVertex, Workspace, ZBufferRenderer};
+use crate::render::{Cull, ProjectedVertex, Settings, Workspace, ZBufferRenderer};
 use crate::{Camera, Dashes, FillSolid, Pattern, Projection};
 
 fn v(x: i32, y: i32) -> ScreenVertex {

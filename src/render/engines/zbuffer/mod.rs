@@ -78,16 +78,8 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
     where
         K::Color: PixelColor,
     {
-        self.render_with(
-            mesh,
-            edges,
-            camera,
-            settings,
-            ws,
-            &mut compose::Flat(palette),
-            sink,
-            probe,
-        )
+        let input = FrameInput::of_mesh(mesh, edges, camera, settings, Subpixel::<Frac>::BITS);
+        self.render_with(&input, ws, &mut compose::Flat(palette), sink, probe)
     }
 
     /// Renders like [`render`](Self::render) for a grey-scale target (`Gray4`,
@@ -130,31 +122,20 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
             });
         }
         let mut grey = GreyCompose::<G, POLY>::new(palette, small);
-        self.render_with(mesh, edges, camera, settings, ws, &mut grey, sink, probe)
+        let input = FrameInput::of_mesh(mesh, edges, camera, settings, s);
+        self.render_with(&input, ws, &mut grey, sink, probe)
     }
 
-    /// The frame: the shared band loop ([`render_ids`]) with this engine's depth
-    /// pass, and `composer` turning each finished band into spans.
-    #[allow(clippy::too_many_arguments)]
+    /// The frame of `input`: the shared band loop ([`render_ids`]) with this
+    /// engine's depth pass, and `composer` turning each finished band into spans.
     fn render_with<D: Depth, K: SpanSink, C: Compose<K>, R: FrameProbe>(
         &mut self,
-        mesh: &Mesh<'_>,
-        edges: &EdgeAdjacency<'_>,
-        camera: &Camera,
-        settings: &Settings,
+        input: &FrameInput<'_, '_>,
         ws: &mut Workspace<'_, D>,
         composer: &mut C,
         sink: &mut K,
         probe: &mut R,
     ) -> Result<Stats, Error<K::Error>> {
-        let input = FrameInput {
-            mesh,
-            positions: mesh.vertices(),
-            edges,
-            camera,
-            settings,
-            s: Subpixel::<Frac>::BITS,
-        };
         let Workspace {
             vertices,
             drawn,
@@ -174,7 +155,7 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> ZBufferRenderer<Frac,
             engine: self,
             depth,
         };
-        render_ids::<POLY, _, _, _, _>(&mut pass, &input, &mut ids, composer, sink, probe)
+        render_ids::<POLY, _, _, _, _>(&mut pass, input, &mut ids, composer, sink, probe)
     }
 
     /// Depth-tests every drawn face that reaches the band; returns the spans walked.
