@@ -1,8 +1,9 @@
 //! The firmware examples' scene code on the host: the `pbuffer-scenes` crate's `scenes`
 //! and `instrument` modules (`examples/scenes`, which the firmware builds too), so the
-//! host draws the firmware's frames with the very same code; and [`Demo`], the instrument-panel demo ready to draw (the
-//! bracket's fast-engine constants made here as build.rs makes them), for the frame-hash
-//! test, the `instrument` PNG writer and the `instrument-window` simulator window.
+//! host draws the firmware's frames with the very same code; [`Bake`], a mesh made
+//! ready as build.rs makes the firmware's; and [`Demo`], the instrument-panel demo
+//! ready to draw, for the frame-hash test, the `instrument` PNG writer and the
+//! `instrument-window` simulator window.
 
 use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
 use pbuffer::render::{BakedMesh, CompactEdge, FacePlane};
@@ -14,60 +15,84 @@ pub use pbuffer_scenes::{instrument, scenes};
 use instrument::Frame;
 use scenes::{panel, PanelFastBuffers, PanelFastEngine};
 
-/// The bracket's mesh, as the firmware has it (`scenes::panel`'s arrays).
-fn panel_mesh() -> Mesh<'static> {
-    Mesh::new(&panel::VERTICES, &panel::INDICES, &panel::OFFSETS).expect("the panel mesh")
-}
-
-/// The bracket's fast-engine constants and planarity bits, made at run time as
-/// `examples/embedded/build.rs` makes them (crease angle 30 degrees).
+/// A mesh made ready as `examples/embedded/build.rs` makes the firmware's meshes, at
+/// run time: its edge list (crease angle 30 degrees), which faces are planar, and the
+/// fast engine's constants (`BakedMesh::bake`). The one set-up of every firmware frame
+/// on the host (the demo, `bench --firmware`, the firmware tests).
 #[derive(Debug, Clone)]
-pub struct PanelBake {
+pub struct Bake {
+    vertices: Vec<[f32; 3]>,
+    indices: Vec<u32>,
+    offsets: Vec<u32>,
+    edges: Vec<MeshEdge>,
     planar: Vec<u32>,
     planes: Vec<FacePlane>,
-    edges: Vec<CompactEdge>,
+    compact: Vec<CompactEdge>,
 }
 
-impl PanelBake {
-    /// Bakes the bracket.
-    pub fn new() -> Self {
-        let mesh = panel_mesh();
-        let mut weld = vec![0u32; mesh.vertices().len()];
-        let mut scratch = vec![HalfEdgeRecord::EMPTY; mesh.indices().len()];
-        let mut store = vec![MeshEdge::EMPTY; mesh.indices().len()];
+impl Bake {
+    /// Bakes the mesh of these arrays (panics on a mesh the firmware could not take).
+    pub fn new(vertices: &[[f32; 3]], indices: &[u32], offsets: &[u32]) -> Self {
+        let mesh = Mesh::new(vertices, indices, offsets).expect("mesh");
+        let mut weld = vec![0u32; vertices.len()];
+        let mut scratch = vec![HalfEdgeRecord::EMPTY; indices.len()];
+        let mut store = vec![MeshEdge::EMPTY; indices.len()];
         let adjacency = EdgeAdjacency::build(&mesh, 30.0, &mut weld, &mut scratch, &mut store)
-            .expect("the panel's adjacency");
+            .expect("adjacency");
         let mut planar = vec![0u32; pbuffer::mesh::planar_words(mesh.face_count())];
         pbuffer::order::planar_faces(&mesh, &mut planar).expect("sized");
         let mut planes = vec![FacePlane::default(); mesh.face_count()];
-        let mut edges = vec![CompactEdge::EMPTY; adjacency.edges().len()];
-        BakedMesh::bake(&mesh, &adjacency, &mut planes, &mut edges).expect("bakes");
+        let mut compact = vec![CompactEdge::EMPTY; adjacency.edges().len()];
+        BakedMesh::bake(&mesh, &adjacency, &mut planes, &mut compact).expect("bakes");
+        let edges = adjacency.edges().to_vec();
         Self {
+            vertices: vertices.to_vec(),
+            indices: indices.to_vec(),
+            offsets: offsets.to_vec(),
+            edges,
             planar,
             planes,
-            edges,
+            compact,
         }
+    }
+
+    /// The panel bracket (`scenes::panel`'s arrays).
+    pub fn panel() -> Self {
+        Self::new(&panel::VERTICES, &panel::INDICES, &panel::OFFSETS)
+    }
+
+    /// The mesh without its planarity bits (as the scan-line examples keep it).
+    pub fn plain_mesh(&self) -> Mesh<'_> {
+        Mesh::new(&self.vertices, &self.indices, &self.offsets).expect("mesh")
+    }
+
+    /// The mesh with its planarity bits (as the fast examples keep it).
+    pub fn mesh(&self) -> Mesh<'_> {
+        self.plain_mesh()
+            .with_planar_faces(&self.planar)
+            .expect("planar bits")
+    }
+
+    /// The edge list, as the scan-line firmware takes it (`EdgeAdjacency::from_edges`).
+    pub fn adjacency(&self) -> EdgeAdjacency<'_> {
+        EdgeAdjacency::from_edges(&self.plain_mesh(), &self.edges).expect("the edge list")
+    }
+
+    /// Edges of the fast engine's compact list (what its buffers are sized for).
+    pub fn baked_edges(&self) -> usize {
+        self.compact.len()
     }
 
     /// The baked mesh, checked by `BakedMesh::new` as the firmware checks it at boot.
     pub fn baked(&self) -> BakedMesh<'_> {
-        let mesh = panel_mesh()
-            .with_planar_faces(&self.planar)
-            .expect("planar bits");
-        BakedMesh::new(mesh, &self.planes, &self.edges).expect("the baked panel")
-    }
-}
-
-impl Default for PanelBake {
-    fn default() -> Self {
-        Self::new()
+        BakedMesh::new(self.mesh(), &self.planes, &self.compact).expect("the baked mesh")
     }
 }
 
 /// The instrument-panel demo with its engine and lent buffers (the firmware's sizes).
 #[derive(Debug)]
 pub struct Demo {
-    bake: PanelBake,
+    bake: Bake,
     engine: Box<PanelFastEngine>,
     buffers: Box<PanelFastBuffers>,
 }
@@ -76,7 +101,7 @@ impl Demo {
     /// A demo ready to draw.
     pub fn new() -> Self {
         Self {
-            bake: PanelBake::new(),
+            bake: Bake::panel(),
             engine: Box::new(PanelFastEngine::new()),
             buffers: Box::new(PanelFastBuffers::new()),
         }

@@ -15,9 +15,9 @@
 
 use pbuffer_scenes::{obj, painter, plain, scenes};
 
-use host_tests::firmware::{instrument, Demo};
+use host_tests::firmware::{instrument, Bake, Demo};
 use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
-use pbuffer::render::{storage_rows, BakedMesh, CompactEdge, FacePlane};
+use pbuffer::render::storage_rows;
 use pbuffer::{packed_len, DrawMode, PackedFramebuffer, Pattern};
 use scenes::{fnv1a64, panel, suzanne, View};
 
@@ -70,15 +70,6 @@ fn print(name: &str, n: u32, bytes: &[u8]) -> u32 {
     bytes.iter().map(|b| b.count_ones()).sum()
 }
 
-/// The fast engine's constants of `mesh` (edge list `adjacency`), as build.rs bakes
-/// them.
-fn bake(mesh: &Mesh<'_>, adjacency: &EdgeAdjacency<'_>) -> (Vec<FacePlane>, Vec<CompactEdge>) {
-    let mut planes = vec![FacePlane::default(); mesh.face_count()];
-    let mut edges = vec![CompactEdge::EMPTY; adjacency.edges().len()];
-    BakedMesh::bake(mesh, adjacency, &mut planes, &mut edges).expect("bakes");
-    (planes, edges)
-}
-
 /// The fast-engine examples, the scan-line examples, the painter and the plain f32
 /// baseline on one scene, exactly as the firmware binaries run them (buffer sizes
 /// included). `$edges` is the baked edge count the fast buffers are sized for.
@@ -90,21 +81,12 @@ macro_rules! run_scene {
     ) => {{
         const N: usize = packed_len($w, $h);
         let s: &Example = $s;
-        let mesh = Mesh::new(&s.vertices, &s.indices, &s.offsets).expect("mesh");
-        let mut store = vec![MeshEdge::EMPTY; s.indices.len()];
-        let adjacency = edges(&mesh, &mut store);
-        // As the fast firmware: planarity bits, face planes and the compact edge list
-        // made as build.rs makes them, checked by `BakedMesh::new`.
-        let mut planar = vec![0u32; pbuffer::mesh::planar_words(mesh.face_count())];
-        pbuffer::order::planar_faces(&mesh, &mut planar).expect("sized");
-        let (planes, baked_edges) = bake(&mesh, &adjacency);
-        assert_eq!(baked_edges.len(), $edges, "the fast buffers' edge count");
-        let baked = BakedMesh::new(
-            mesh.with_planar_faces(&planar).expect("planar bits"),
-            &planes,
-            &baked_edges,
-        )
-        .expect("baked mesh");
+        // As the firmware: the scan-line examples take the mesh and its edge list; the
+        // fast ones its planarity bits, face planes and compact edge list, made as
+        // build.rs makes them and checked by `BakedMesh::new`.
+        let bake = Bake::new(&s.vertices, &s.indices, &s.offsets);
+        let (mesh, adjacency, baked) = (bake.plain_mesh(), bake.adjacency(), bake.baked());
+        assert_eq!(bake.baked_edges(), $edges, "the fast buffers' edge count");
         let mut fast_engine = Box::new(<$fast_engine>::new());
         $(
             let mut b = Box::new(<$fast_buffers>::new());

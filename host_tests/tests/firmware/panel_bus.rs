@@ -33,9 +33,9 @@ use embedded_graphics::Pixel;
 use embedded_hal_mock::eh0::digital::{Mock as PinMock, State, Transaction as PinT};
 use embedded_hal_mock::eh0::spi::{Mock as SpiMock, Transaction as SpiT};
 use embedded_hal_mock::eh1::i2c::{Mock as I2cMock, Transaction as I2cT};
+use host_tests::firmware::Bake;
 use panels::{NoPin, Record, Sharp, Tap};
-use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
-use pbuffer::render::{BakedMesh, CompactEdge, FacePlane};
+use pbuffer::render::BakedMesh;
 use pbuffer::{packed_len, DrawMode, PackedFramebuffer};
 use scenes::{fnv1a64, panel, suzanne};
 use ssd1306::mode::DisplayConfig;
@@ -46,24 +46,7 @@ const ADDRESS: u8 = 0x3C;
 
 /// Bakes a mesh as build.rs does and hands it to `f`.
 fn with_baked<R>(v: &[[f32; 3]], i: &[u32], o: &[u32], f: impl FnOnce(&BakedMesh<'_>) -> R) -> R {
-    let mesh = Mesh::new(v, i, o).expect("mesh");
-    let mut store = vec![MeshEdge::EMPTY; i.len()];
-    let mut weld = vec![0u32; v.len()];
-    let mut scratch = vec![HalfEdgeRecord::EMPTY; i.len()];
-    let adjacency =
-        EdgeAdjacency::build(&mesh, 30.0, &mut weld, &mut scratch, &mut store).expect("edges");
-    let mut planar = vec![0u32; pbuffer::mesh::planar_words(mesh.face_count())];
-    pbuffer::order::planar_faces(&mesh, &mut planar).expect("sized");
-    let mut planes = vec![FacePlane::default(); mesh.face_count()];
-    let mut edges = vec![CompactEdge::EMPTY; adjacency.edges().len()];
-    BakedMesh::bake(&mesh, &adjacency, &mut planes, &mut edges).expect("bakes");
-    let baked = BakedMesh::new(
-        mesh.with_planar_faces(&planar).expect("planar"),
-        &planes,
-        &edges,
-    )
-    .expect("baked");
-    f(&baked)
+    f(&Bake::new(v, i, o).baked())
 }
 
 /// Runs `f` on a thread with room for the buffers.

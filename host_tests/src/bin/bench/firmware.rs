@@ -14,10 +14,11 @@ use std::collections::HashMap;
 use std::process::ExitCode;
 
 use fixed::types::extra::U4;
+use host_tests::firmware::Bake;
 use host_tests::measure::measured_region;
 use host_tests::tools::callgrind::{measure_all, thousands};
-use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
-use pbuffer::render::{BakedMesh, CompactEdge, FacePlane, FastRenderer, FastWorkspace};
+use pbuffer::mesh::{EdgeAdjacency, Mesh};
+use pbuffer::render::{BakedMesh, FastRenderer, FastWorkspace};
 use pbuffer::{packed_len, CodeFillRenderer, CodeWorkspace, DrawMode, PackedFramebuffer, Pattern};
 
 use pbuffer_scenes::scenes::{self, fnv1a64, panel, suzanne, View};
@@ -90,27 +91,17 @@ fn frames(example: &str) -> u32 {
 fn draw(example: &str, n: u32, measure: bool) -> Vec<u8> {
     let scene = scene_of(example);
     let a = arrays(scene);
-    let mesh = Mesh::new(&a.vertices, &a.indices, &a.offsets).expect("mesh");
-    let mut planar = vec![0u32; pbuffer::mesh::planar_words(mesh.face_count())];
-    // As the suzanne and the (fast) panel firmware: planarity made on the host, kept
-    // with the mesh (the other panel examples keep none).
+    // As build.rs makes them: the edge list, the planarity bits and the fast engine's
+    // constants (the firmware checks them once at boot, outside the frames). The
+    // suzanne and the (fast) panel firmware keep the planarity with the mesh, the other
+    // panel examples none.
+    let bake = Bake::new(&a.vertices, &a.indices, &a.offsets);
     let mesh = if scene == "suzanne" || example == "panel" {
-        pbuffer::order::planar_faces(&mesh, &mut planar).expect("sized");
-        mesh.with_planar_faces(&planar).expect("planar bits")
+        bake.mesh()
     } else {
-        mesh
+        bake.plain_mesh()
     };
-    let mut store = vec![MeshEdge::EMPTY; a.indices.len()];
-    let mut weld = vec![0u32; a.vertices.len()];
-    let mut scratch = vec![HalfEdgeRecord::EMPTY; a.indices.len()];
-    let edges =
-        EdgeAdjacency::build(&mesh, 30.0, &mut weld, &mut scratch, &mut store).expect("edges");
-    // The fast engine's constants, as build.rs bakes them (the firmware checks them
-    // once at boot, outside the frames).
-    let mut planes = vec![FacePlane::default(); mesh.face_count()];
-    let mut compact = vec![CompactEdge::EMPTY; edges.edges().len()];
-    BakedMesh::bake(&mesh, &edges, &mut planes, &mut compact).expect("bakes");
-    let baked = BakedMesh::new(mesh, &planes, &compact).expect("baked mesh");
+    let (edges, baked) = (bake.adjacency(), bake.baked());
     let run = |f: &mut dyn FnMut()| {
         if measure {
             measured_region(f);
