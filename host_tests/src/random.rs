@@ -42,13 +42,6 @@ impl Rng {
         ((u128::from(self.next_u64()) * u128::from(n)) >> 64) as u64
     }
 
-    /// Uniform integer in `[lo, hi]` (inclusive; `lo <= hi`).
-    pub fn int(&mut self, lo: i32, hi: i32) -> i32 {
-        assert!(lo <= hi, "int: empty range {lo}..={hi}");
-        let n = (i64::from(hi) - i64::from(lo) + 1) as u64;
-        (i64::from(lo) + self.below(n) as i64) as i32
-    }
-
     /// True with probability `p`.
     pub fn chance(&mut self, p: f64) -> bool {
         self.unit() < p
@@ -396,20 +389,6 @@ mod tests {
         let a = polygon(&mut Rng::new(7), Shape::Concave, 4, 64, 64);
         let b = polygon(&mut Rng::new(7), Shape::Concave, 4, 64, 64);
         assert_eq!(a, b);
-    }
-
-    #[test]
-    fn int_is_inclusive() {
-        let mut rng = Rng::new(3);
-        let mut seen = [false; 5];
-        for _ in 0..200 {
-            let k = rng.int(-2, 2);
-            assert!((-2..=2).contains(&k));
-            seen[(k + 2) as usize] = true;
-        }
-        assert!(seen.iter().all(|&s| s), "every value of -2..=2 drawn");
-        assert_eq!(rng.int(7, 7), 7);
-        let _ = rng.int(i32::MIN, i32::MAX);
     }
 
     #[test]

@@ -158,25 +158,11 @@ fn perspective_quad_maps_like_ortho_at_unit_distance() {
     assert!((r.depth[3 * 8 + 4] - 1.0).abs() < 1e-12);
 }
 
-/// An axis-aligned box from its corners, faces wound outward in the order -x, +x,
-/// -y, +y, -z, +z (as `shapes::add_box` makes them; written here so that the
-/// reference's tests use nothing of the inputs they judge).
+/// An axis-aligned box from its corners (`shapes::add_box` without rotation).
 fn boxm(lo: V3, hi: V3, m: &mut MeshData) {
-    let base = m.vertices.len() as u32;
-    for k in 0..8 {
-        let pick = |bit: usize, i: usize| if k & bit != 0 { hi[i] } else { lo[i] };
-        m.vertices.push([pick(1, 0), pick(2, 1), pick(4, 2)]);
-    }
-    for f in [
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-    ] {
-        m.faces.push(f.iter().map(|&i| base + i).collect());
-    }
+    let centre = [0, 1, 2].map(|i| (lo[i] + hi[i]) / 2.0);
+    let half = [0, 1, 2].map(|i| (hi[i] - lo[i]) / 2.0);
+    crate::shapes::add_box(m, centre, half, 0.0, 0.0);
 }
 
 /// A small box in front of a big box, seen orthographically along -Z (1 unit = 1 px
