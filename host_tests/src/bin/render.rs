@@ -8,7 +8,7 @@
 //! ```
 //!
 //! Without SCENE it renders `../shared/models/suzanne.obj` (relative to the workspace
-//! root), or a built-in cube when that file is missing, to `docs/render.png`, and prints
+//! root), or a built-in cube when that file is missing, to `target/render.png` (outside the tracked tree), and prints
 //! the figures of the frame.
 //!
 //! Exit status: 0 on success; 2 on bad input (unreadable file, malformed OBJ, bad flag
@@ -37,13 +37,31 @@ fn bad(msg: impl Into<String>) -> Fail {
     Fail(msg.into(), 2)
 }
 
+/// Every output's directory must exist: a missing one is a typo far more often than a
+/// wish, so it is refused (exit 2, naming it) before anything is rendered, not created.
+fn check_output_dirs(o: &Options) -> Result<(), Fail> {
+    let outputs = [
+        ("--out", &o.out),
+        ("--ids", &o.ids),
+        ("--lines", &o.lines),
+        ("--grey", &o.grey),
+    ];
+    for (flag, path) in outputs {
+        let Some(dir) = path.as_deref().and_then(Path::parent) else {
+            continue;
+        };
+        if !dir.as_os_str().is_empty() && !dir.is_dir() {
+            return Err(bad(format!(
+                "{flag}: directory {} does not exist",
+                dir.display()
+            )));
+        }
+    }
+    Ok(())
+}
+
 fn write_file(flag: &str, path: &Path, bytes: &[u8]) -> Result<(), Fail> {
     let io = || -> std::io::Result<()> {
-        if let Some(dir) = path.parent() {
-            if !dir.as_os_str().is_empty() {
-                std::fs::create_dir_all(dir)?;
-            }
-        }
         let mut f = std::fs::File::create(path)?;
         f.write_all(bytes)?;
         f.flush()
@@ -139,6 +157,7 @@ fn run() -> Result<(), Fail> {
         print!("{}", help());
         return Ok(());
     }
+    check_output_dirs(&o)?;
 
     // The scene.
     let (mesh, scene_name) = load_scene(o.scene.as_deref()).map_err(bad)?;
@@ -198,7 +217,7 @@ fn run() -> Result<(), Fail> {
     // Outputs.
     let out = match (&o.out, &o.scene) {
         (Some(p), _) => Some(p.clone()),
-        (None, None) => Some(workspace_root().join("docs").join("render.png")),
+        (None, None) => Some(workspace_root().join("target").join("render.png")),
         (None, Some(_)) => None,
     };
     if let Some(p) = &out {

@@ -37,7 +37,7 @@ exit status: 0 ok, 2 bad input (file, OBJ, flag or value), 1 rendering failed";
 )]
 pub struct Flags {
     /// Wavefront OBJ (v and f lines); without it: ../shared/models/suzanne.obj
-    /// (or a built-in cube), written to docs/render.png, stats printed;
+    /// (or a built-in cube), written to target/render.png, stats printed;
     /// scene:NAME renders a procedural test scene (cube, boxes, icosphere,
     /// torus, gear, frame, cyclic, coplanar)
     #[arg(value_name = "SCENE.obj", value_parser = values::scene, verbatim_doc_comment)]
@@ -139,7 +139,7 @@ pub struct Flags {
     pub dashes: Option<pbuffer::Dashes>,
 
     /// The picture as a display shows it
-    /// (default docs/render.png without SCENE)
+    /// (default target/render.png without SCENE)
     #[arg(long, value_name = "FILE.png", value_parser = values::file, allow_hyphen_values = true,
           help_heading = OUTPUTS, verbatim_doc_comment)]
     pub out: Option<PathBuf>,
