@@ -20,21 +20,35 @@ use crate::frame::{EngineSpec, ModeSpec, RenderSpec};
 use crate::obj::{load_obj, workspace_root};
 use crate::shapes::{self, Framing, Scene};
 
-/// Engines of the report: the spec, its name, whether it has a depth buffer. Adding
-/// an engine to the report is one line here.
-pub const ENGINES: &[(EngineSpec, &str, bool)] = &[
-    (EngineSpec::CodeFill, "codefill", false),
-    (EngineSpec::CodeFillCrossings, "codefill-crossings", false),
-    (EngineSpec::Scanline, "scanline", false),
-    (EngineSpec::ZBuffer, "zbuffer", true),
-    (EngineSpec::Fast, "fast", false),
+/// Engines of the report: the spec, its name, whether it has a depth buffer, whether
+/// it draws in bands of rows (the fast engine has no bands: its buffer is one row).
+/// Adding an engine to the report is one line here.
+pub const ENGINES: &[(EngineSpec, &str, bool, bool)] = &[
+    (EngineSpec::CodeFill, "codefill", false, true),
+    (
+        EngineSpec::CodeFillCrossings,
+        "codefill-crossings",
+        false,
+        true,
+    ),
+    (EngineSpec::Scanline, "scanline", false, true),
+    (EngineSpec::ZBuffer, "zbuffer", true, true),
+    (EngineSpec::Fast, "fast", false, false),
 ];
+
+/// Index into [`ENGINES`] of the default engine (`render`'s: the fast engine).
+pub const FAST: usize = 4;
+/// Index into [`ENGINES`] of code fill in depth order, the exact engine whose S
+/// sweep runs to 8.
+pub const CODEFILL: usize = 0;
 
 /// Depth bits the Z-buffer engine offers (`Depth` is implemented for `u16` and `u32`
 /// only: there is no 24-bit sample).
 pub const DEPTH_BITS: [u32; 2] = [16, 32];
-/// Sub-pixel bits of the sweep.
+/// Sub-pixel bits of the sweep (the fast engine stops at 6: `SubpixelTooFine` beyond).
 pub const SUBPIXEL: [u32; 5] = [0, 2, 4, 6, 8];
+/// The most sub-pixel bits the fast engine takes.
+pub const FAST_MAX_SUBPIXEL: u32 = 6;
 /// Frame sizes: a 400 x 240 memory LCD and a 128 x 64 OLED.
 pub const SIZES: [(usize, usize); 2] = [(400, 240), (128, 64)];
 /// Band height of the banded rows (the other is the full frame).
@@ -64,9 +78,9 @@ pub struct Config {
 }
 
 impl Config {
-    /// The default settings: code fill, S = 4, full frame.
+    /// The default settings, `render`'s: the fast engine, S = 4 (it has no bands).
     pub const DEFAULT: Config = Config {
-        engine: 0,
+        engine: FAST,
         subpixel: 4,
         depth_bits: None,
         band: None,
@@ -131,24 +145,33 @@ impl Config {
 }
 
 /// The combinations for one scene: one knob at a time from [`Config::DEFAULT`]
-/// (every S; every engine, at each depth for one with depth; the 8-row band for
-/// each engine), plus, on the grid scenes, every S x depth bits of the Z-buffer.
+/// (every S the fast engine takes, and every S of code fill in depth order, the exact
+/// engine; every engine, at each depth for one with depth; the 8-row band for each
+/// engine with bands), plus, on the grid scenes, every S x depth bits of the Z-buffer.
 pub fn configs(scene: &str, quick: bool) -> Vec<Config> {
     let d = Config::DEFAULT;
     let mut v = Vec::new();
     let subpixel: &[u32] = if quick { &[0, 4, 8] } else { &SUBPIXEL };
-    for &s in subpixel {
+    for &s in subpixel.iter().filter(|&&s| s <= FAST_MAX_SUBPIXEL) {
         v.push(Config { subpixel: s, ..d });
     }
-    for (e, &(_, _, depth)) in ENGINES.iter().enumerate() {
+    for &s in subpixel {
+        v.push(Config {
+            engine: CODEFILL,
+            subpixel: s,
+            ..d
+        });
+    }
+    for (e, &(_, _, depth, banded)) in ENGINES.iter().enumerate() {
         let depths: Vec<Option<u32>> = if depth {
             DEPTH_BITS.iter().rev().map(|&b| Some(b)).collect()
         } else {
             vec![None]
         };
         for depth_bits in depths {
-            for band in [None, Some(BAND)] {
-                if quick && band.is_some() && e != 0 {
+            let bands: &[Option<usize>] = if banded { &[None, Some(BAND)] } else { &[None] };
+            for &band in bands {
+                if quick && band.is_some() && e != CODEFILL {
                     continue;
                 }
                 v.push(Config {
@@ -161,8 +184,7 @@ pub fn configs(scene: &str, quick: bool) -> Vec<Config> {
         }
     }
     if GRID_SCENES.contains(&scene) && !quick {
-        for (e, &(_, _, depth)) in ENGINES.iter().enumerate().filter(|x| x.1 .2) {
-            let _ = depth;
+        for (e, _) in ENGINES.iter().enumerate().filter(|x| x.1 .2) {
             for &s in &SUBPIXEL {
                 for &b in &DEPTH_BITS {
                     v.push(Config {

@@ -218,7 +218,7 @@ pub fn errors_pass(quick: bool, res: &mut Results) {
                         diff_vs_codefill: if config.depth_bits.is_some() {
                             let cf = Config {
                                 depth_bits: None,
-                                engine: 0,
+                                engine: super::CODEFILL,
                                 ..config
                             };
                             let ids = match codefill_ids.iter().find(|c| c.0 == cf) {
@@ -233,7 +233,7 @@ pub fn errors_pass(quick: bool, res: &mut Results) {
                                 d
                             })
                         } else {
-                            if config.engine == 0 {
+                            if config.engine == super::CODEFILL {
                                 codefill_ids.push((config, frame.ids.clone()));
                             }
                             None
