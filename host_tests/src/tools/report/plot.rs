@@ -118,12 +118,9 @@ fn place(
         inside
             && !taken.rects.iter().any(|&t| overlaps(r, t))
             && leader(at, r, w).is_none_or(|(a, b)| {
-                !taken.leaders.iter().any(|&(c, d)| crosses(a, b, c, d))
-                    && !(strict
-                        && taken
-                            .rects
-                            .iter()
-                            .any(|&t| t != own && !contains(t, at) && through(a, b, t)))
+                let crossing = taken.leaders.iter().any(|&(c, d)| crosses(a, b, c, d));
+                let under = |t: &Rect| *t != own && !contains(*t, at) && through(a, b, *t);
+                !crossing && !(strict && taken.rects.iter().any(under))
             })
     };
     for ring in 0..12 {
