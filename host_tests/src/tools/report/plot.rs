@@ -120,7 +120,8 @@ fn place(
             && leader(at, r, w).is_none_or(|(a, b)| {
                 let crossing = taken.leaders.iter().any(|&(c, d)| crosses(a, b, c, d));
                 let under = |t: &Rect| *t != own && !contains(*t, at) && through(a, b, *t);
-                !crossing && !(strict && taken.rects.iter().any(under))
+                let blocked = strict && taken.rects.iter().any(under);
+                !crossing && !blocked
             })
     };
     for ring in 0..12 {
