@@ -122,6 +122,12 @@ pub use scan::XorFiller;
 pub use scan::{FillRule, ScanConverter};
 pub use span::{ContiguousRows, FillSolid, Span, SpanSink, ROW_SEGMENTS};
 
+/// The README's Rust blocks, compiled and run as doctests so that the guide cannot
+/// drift from the library.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;
+
 /// The 2-D modulo-2 filler, now in [`scan`] beside the scan converter whose pixels
 /// it gives; these paths stay for one release. (The 3-D code-fill engine is
 /// [`render::CodeFillRenderer`].)

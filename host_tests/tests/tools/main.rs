@@ -1,9 +1,10 @@
 //! The host tools and the library's advice: the `render` command's outputs and flags,
-//! `recommend`, and the engines table of `report`.
+//! `recommend`, the engines table of `report`, and the documents that describe them.
 //!
 //! One test binary; each module is one suite (`cargo test -p host_tests --test tools
 //! MODULE::`).
 
+mod documents;
 mod engines_table;
 mod recommend;
 mod render_cli;
