@@ -154,6 +154,41 @@ fn unwritable_output() {
 }
 
 #[test]
+fn out_into_a_missing_directory_is_refused_not_created() {
+    let d = Dir::new("missing-dir");
+    let p = d.file("t.obj", TETRA);
+    for flag in ["--out", "--ids", "--lines", "--grey"] {
+        let missing = d.path("no/such/dir");
+        let target = missing.join("x.png");
+        let err = fails_with(&render(&[s(&p), flag, s(&target)]), flag);
+        assert!(
+            err.contains(s(&missing)),
+            "{err:?} does not name the directory"
+        );
+        assert!(!d.path("no").exists(), "{flag} created the directories");
+    }
+}
+
+#[test]
+fn the_main_command_writes_outside_the_tracked_tree() {
+    // `render` without a scene writes target/render.png (git ignores target/), never
+    // a tracked file such as docs/render.png.
+    let out = render(&["--size", "32x16"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let wrote = text
+        .lines()
+        .find_map(|l| l.strip_prefix("wrote: "))
+        .expect("a wrote: line");
+    let root = host_tests::obj::workspace_root();
+    assert_eq!(Path::new(wrote), root.join("target").join("render.png"));
+}
+
+#[test]
 fn too_many_faces_for_ids() {
     let d = Dir::new("ids-limit");
     let mut text = String::from("v 0 0 0\nv 1 0 0\nv 0 1 0\n");
@@ -188,7 +223,7 @@ fn pgm(bytes: &[u8]) -> (String, &[u8]) {
 fn pgm_outputs_and_hash() {
     let d = Dir::new("pgm");
     let p = d.file("t.obj", TETRA);
-    let (ids, lines, png) = (d.path("ids.pgm"), d.path("lines.pgm"), d.path("out/t.png"));
+    let (ids, lines, png) = (d.path("ids.pgm"), d.path("lines.pgm"), d.path("t.png"));
     let out = render(&[
         s(&p),
         "--size",
