@@ -1,9 +1,9 @@
 //! `report`: speed against error (issue 6).
 //!
 //! ```text
-//! cargo run --release -p host_tests --bin report            # full run, writes report/
-//! cargo run --release -p host_tests --bin report -- --quick # smoke test, writes target/report-quick/
-//! cargo run --release -p host_tests --bin report -- engines # every engine, writes report/engines.md
+//! cargo run --profile figures -p host_tests --bin report            # full run, writes report/
+//! cargo run --profile figures -p host_tests --bin report -- --quick # smoke test, writes target/report-quick/
+//! cargo run --profile figures -p host_tests --bin report -- engines # every engine, writes report/engines.md
 //! options: --jobs N (callgrind jobs at a time, default 2), --no-counts, --out DIR, --help
 //! ```
 //!
@@ -153,7 +153,7 @@ fn document(
     plotted: bool,
 ) -> (String, usize, usize) {
     let command = format!(
-        "cargo run --release -p host_tests --bin report{}",
+        "cargo run --profile figures -p host_tests --bin report{}",
         if args.quick { " -- --quick" } else { "" }
     );
     let mut s = String::from("# Speed against error\n\n");
@@ -254,7 +254,7 @@ fn engines_report(args: &ReportFlags) -> ExitCode {
         Err("not measured (--no-counts)".into())
     };
     let command = format!(
-        "cargo run --release -p host_tests --bin report -- engines{}",
+        "cargo run --profile figures -p host_tests --bin report -- engines{}",
         if args.quick { " --quick" } else { "" }
     );
     let md = engines::markdown(

@@ -129,7 +129,7 @@ pub fn run(markdown: bool, jobs: usize) -> ExitCode {
         std::thread::available_parallelism().map_or(1, |n| n.get()),
     );
     let mut out = report_header(
-        "cargo run --release -p host_tests --bin bench",
+        "cargo run --profile figures -p host_tests --bin bench",
         "-- --markdown",
         &machine,
         markdown,

@@ -2,10 +2,10 @@
 //! into a 400 x 240 1-bpp framebuffer, pbuffer against embedded-graphics.
 //!
 //! ```text
-//! cargo run --release -p host_tests --bin bench [-- --markdown] [-- --jobs N]
-//! cargo run --release -p host_tests --bin bench -- --scene3d [--markdown]
-//! cargo run --release -p host_tests --bin bench -- --firmware [--m4 FILE]
-//! cargo run --release -p host_tests --bin bench -- --help
+//! cargo run --profile figures -p host_tests --bin bench [-- --markdown] [-- --jobs N]
+//! cargo run --profile figures -p host_tests --bin bench -- --scene3d [--markdown]
+//! cargo run --profile figures -p host_tests --bin bench -- --firmware [--m4 FILE]
+//! cargo run --profile figures -p host_tests --bin bench -- --help
 //! ```
 //!
 //! `--firmware` counts the firmware examples' frames on the host and sets them against

@@ -192,7 +192,7 @@ pub fn run(markdown: bool, jobs: usize) -> ExitCode {
         std::env::consts::ARCH,
     );
     let mut out = report_header(
-        "cargo run --release -p host_tests --bin bench -- --scene3d",
+        "cargo run --profile figures -p host_tests --bin bench -- --scene3d",
         "--markdown",
         &machine,
         markdown,
