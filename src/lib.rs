@@ -62,7 +62,7 @@
 //!   and Mousumi Dutt, *Visible Surface Detection*, lecture notes: the Z-buffer,
 //!   Newell-Newell-Sancha depth sort, Warnock subdivision, BSP trees, the scan-line
 //!   method, ray casting ([`order`] and the engines of [`render`]).
-#![no_std]
+#![cfg_attr(not(feature = "std"), no_std)]
 #![forbid(unsafe_code)]
 #![deny(missing_docs, missing_debug_implementations)]
 // Panic-freedom made visible: no unchecked index, unwrap, expect or panic outside
@@ -85,12 +85,16 @@
     unused_qualifications
 )]
 
+#[cfg(feature = "std")]
+pub mod bake;
 mod bits;
 pub mod camera;
 pub mod codes;
 mod drawing;
 mod error;
 mod framebuffer;
+#[cfg(feature = "std")]
+pub mod obj;
 mod geometry;
 pub mod mesh;
 pub mod order;
