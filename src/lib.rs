@@ -93,10 +93,10 @@ pub mod codes;
 mod drawing;
 mod error;
 mod framebuffer;
-#[cfg(feature = "std")]
-pub mod obj;
 mod geometry;
 pub mod mesh;
+#[cfg(feature = "std")]
+pub mod obj;
 pub mod order;
 mod pattern;
 pub mod recommend;
@@ -106,7 +106,7 @@ mod sort;
 mod span;
 mod vector;
 
-pub use camera::{Camera, Projection};
+pub use camera::{Camera, Projection, FIT_FILL, FIT_FOV_DEG, FIT_VIEW_DIRECTION};
 pub use codes::SchemeViolation;
 pub use drawing::{Drawing, FrameRows, CLIPPED_CORNERS, CREASE_DEG};
 pub use error::{CameraProblem, EdgeProblem, Error};

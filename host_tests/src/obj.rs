@@ -104,7 +104,10 @@ mod tests {
         let e = parse_obj("v 0 0 0\n", "t.obj").unwrap_err();
         assert_eq!(e, "t.obj:-: no faces (no `f` lines)");
         let e = load_obj(Path::new("/nonexistent/dir/x.obj")).unwrap_err();
-        assert!(e.starts_with("/nonexistent/dir/x.obj:-: cannot read"), "{e}");
+        assert!(
+            e.starts_with("/nonexistent/dir/x.obj:-: cannot read"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -2,7 +2,6 @@
 
 use core::fmt;
 
-
 /// An OBJ file rejected: the file's name, the line (`None` for a problem of the whole
 /// file) and what is wrong. Displays as one line, `FILE:LINE: problem` or
 /// `FILE:-: problem`, fit for a build script's panic or a command's error.

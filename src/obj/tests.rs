@@ -213,11 +213,17 @@ fn error_variants_name_the_problem() {
     assert_eq!(problem("v 0 0 0\nf 1 1\n"), ObjProblem::ShortFace(2));
     assert_eq!(
         problem("v 0 0 0\nf 1 1 -2\n"),
-        ObjProblem::NegativeOutOfRange { index: -2, known: 1 }
+        ObjProblem::NegativeOutOfRange {
+            index: -2,
+            known: 1
+        }
     );
     assert_eq!(
         problem("v 0 0 0\nf 1 1 7\n"),
-        ObjProblem::IndexOutOfRange { index: 7, vertices: 1 }
+        ObjProblem::IndexOutOfRange {
+            index: 7,
+            vertices: 1
+        }
     );
     assert_eq!(problem("v 0 0 0\n"), ObjProblem::NoFaces);
 }

@@ -148,7 +148,10 @@ fn firmware_example_frames() {
             };
             let mut store = vec![MeshEdge::EMPTY; suz.indices.len()];
             // The converter's edge count sizes the firmware's edge store exactly.
-            assert_eq!(edges(&probe, &mut store).edges().len(), obj::unique_edges(&m));
+            assert_eq!(
+                edges(&probe, &mut store).edges().len(),
+                obj::unique_edges(&m)
+            );
             assert!(
                 obj::unique_edges(&m) <= 1024,
                 "SuzanneBuffers holds 1024 edge bits"

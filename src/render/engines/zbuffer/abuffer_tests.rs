@@ -1,9 +1,9 @@
 //! The grey coverage mode: sub-sample masks, resolution at shared edges, pictures.
 
 extern crate std;
+use std::string::String;
 use std::vec;
 use std::vec::Vec;
-use std::string::String;
 
 use embedded_graphics::mock_display::MockDisplay;
 use embedded_graphics_core::pixelcolor::{Gray4, Gray8};
