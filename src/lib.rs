@@ -108,7 +108,7 @@ mod vector;
 
 pub use camera::{Camera, Projection, FIT_FILL, FIT_FOV_DEG, FIT_VIEW_DIRECTION};
 pub use codes::SchemeViolation;
-pub use drawing::{Drawing, FrameRows, CLIPPED_CORNERS, CREASE_DEG};
+pub use drawing::{BakedDrawing, Drawing, FrameRows, CLIPPED_CORNERS, CREASE_DEG};
 pub use error::{CameraProblem, EdgeProblem, Error};
 pub use framebuffer::{packed_len, write_mask, PackedFramebuffer};
 pub use geometry::{ScreenPoint, Viewport, GUARD_BAND_PX, MAX_SUBPIXEL_BITS, MAX_VIEWPORT};
