@@ -18,13 +18,12 @@
 //!   checked once ([`BakedMesh::new`]), ready to draw.
 //!
 //! ```no_run
-//! // build.rs
-//! fn main() {
-//!     let out = std::path::PathBuf::from(std::env::var_os("OUT_DIR").unwrap());
-//!     pbuffer::bake::obj_to_rust("models/part.obj", "PART", out.join("part.rs"))
-//!         .unwrap_or_else(|e| panic!("{e}"));
-//! }
+//! // build.rs, in `fn main`:
+//! let out = std::path::PathBuf::from(std::env::var_os("OUT_DIR").unwrap());
+//! pbuffer::bake::obj_to_rust("models/part.obj", "PART", out.join("part.rs"))
+//!     .unwrap_or_else(|e| panic!("{e}"));
 //! // src/main.rs: include!(concat!(env!("OUT_DIR"), "/part.rs"));
+//! // and `BakedDrawing::<PART_V, PART_F, PART_E>::with_mesh(part_baked()?)`
 //! ```
 
 use core::fmt::{self, Write as _};

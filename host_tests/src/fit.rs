@@ -19,7 +19,7 @@
 //! The library offers the same rule to users as `pbuffer::Camera::fit` (its
 //! constants are these, in `f32`); the host computes it in `f64`, as the reference
 //! does everything, so the `render` command's frames are those of the f64 rule, and
-//! the tests below hold the two cameras to agree within f32 rounding.
+//! `tests/tools/fit_library.rs` holds the two cameras to agree within f32 rounding.
 
 use crate::frame::{CameraSpec, MeshData, ProjectionSpec};
 
@@ -245,44 +245,5 @@ mod tests {
         let cam = fit_camera(&m, 400, 240);
         assert_eq!(cam.target, [1.0, 2.0, 3.0]);
         assert!(cam.near > 0.0 && cam.far > cam.near);
-    }
-
-    #[test]
-    fn the_library_fit_is_this_rule_in_f32() {
-        assert_eq!(
-            VIEW_DIRECTION.map(|c| c as f32),
-            pbuffer::FIT_VIEW_DIRECTION
-        );
-        assert_eq!(FIT_FOV_DEG as f32, pbuffer::FIT_FOV_DEG);
-        assert_eq!(FILL as f32, pbuffer::FIT_FILL);
-        let root = crate::obj::workspace_root().join("../shared/models");
-        let mut models = vec![cube(2.0, [10.0, -3.0, 5.0]), cube(0.001, [0.0; 3])];
-        for name in ["suzanne.obj", "teapot.obj", "fandisk.obj"] {
-            if let Ok(m) = crate::obj::load_obj(&root.join(name)) {
-                models.push(m);
-            }
-        }
-        for m in &models {
-            let arrays = crate::setup::MeshArrays::new(m);
-            let mesh = pbuffer::Mesh::new(&arrays.vertices, &arrays.indices, &arrays.offsets)
-                .expect("mesh");
-            for (w, h) in [(400u32, 240u32), (128, 128), (100, 300)] {
-                let host = fit_camera(m, w as usize, h as usize);
-                let lib = pbuffer::Camera::fit(&mesh, w, h).expect("fits");
-                let (_, r) = used_vertex_bounds(m);
-                let close = |a: f32, b: f64, what: &str| {
-                    assert!(
-                        (f64::from(a) - b).abs() <= 1e-5 * (r + b.abs()),
-                        "{what}: {a} vs {b}"
-                    );
-                };
-                for k in 0..3 {
-                    close(lib.eye()[k], host.eye[k], "eye");
-                }
-                let (near, far) = lib.near_far();
-                close(near, host.near, "near");
-                close(far, host.far, "far");
-            }
-        }
     }
 }

@@ -14,7 +14,8 @@
 //! depth precision.
 //!
 //! The `render` command computes this rule in `f64` on the host; here it is `f32`, so
-//! the two cameras agree to `f32` rounding, not bit for bit.
+//! the two cameras agree to `f32` rounding, not bit for bit (a host test holds them
+//! to it).
 
 use super::{cross, dot, normalize, sqrt, sub, tan, Camera, Projection};
 use crate::mesh::Mesh;
@@ -28,10 +29,15 @@ pub const FIT_FOV_DEG: f32 = 30.0;
 pub const FIT_FILL: f32 = 0.8;
 
 impl Camera {
-    /// The camera that frames `mesh` in a `width` x `height` frame, seen along
-    /// [`FIT_VIEW_DIRECTION`] with a [`FIT_FOV_DEG`] perspective: the rule of the
-    /// `render` command's `--fit` (see the [module](self)). A zero size is taken as
-    /// square.
+    /// The camera that frames `mesh` in a `width` x `height` frame (a zero size is
+    /// taken as square): the rule of the `render` command's `--fit`, in `f32`.
+    ///
+    /// The eye looks at the centre of the bounding box of the vertices the faces use,
+    /// along [`FIT_VIEW_DIRECTION`] (from the front-right and a little above, +Y up),
+    /// with a [`FIT_FOV_DEG`] perspective, from the smallest distance at which every
+    /// such vertex projects within [`FIT_FILL`] of the half-width and half-height.
+    /// Near and far bracket the vertices' depths with a margin of a quarter of the
+    /// bounding radius (near at least half the nearest depth), for depth precision.
     ///
     /// ```
     /// # use pbuffer::prelude::*;
@@ -103,7 +109,7 @@ impl Camera {
         if fitted.is_finite() && fitted > 0.0 {
             distance = fitted;
         }
-        let eye = [0, 1, 2].map(|k| c[k] + distance * back[k]);
+        let eye = each(c, back, |c, b| c + distance * b);
         let (lo, hi) = used().fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), p| {
             let z = dot(f, sub(p, eye));
             (lo.min(z), hi.max(z))
@@ -121,16 +127,17 @@ impl Camera {
 fn bounds(points: impl Iterator<Item = [f32; 3]> + Clone) -> ([f32; 3], f32) {
     let (lo, hi) = points.clone().fold(
         ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]),
-        |(lo, hi), p| {
-            (
-                [0, 1, 2].map(|k| lo[k].min(p[k])),
-                [0, 1, 2].map(|k| hi[k].max(p[k])),
-            )
-        },
+        |(lo, hi), p| (each(lo, p, f32::min), each(hi, p, f32::max)),
     );
-    let c = [0, 1, 2].map(|k| 0.5 * (lo[k] + hi[k]));
+    let c = each(lo, hi, |lo, hi| 0.5 * (lo + hi));
     let r = points.fold(0.0f32, |r, p| r.max(sqrt(dot(sub(p, c), sub(p, c)))));
     (c, if r > 0.0 && r.is_finite() { r } else { 1.0 })
+}
+
+/// `op` of `a` and `b` component by component.
+fn each(a: [f32; 3], b: [f32; 3], op: impl Fn(f32, f32) -> f32) -> [f32; 3] {
+    let ([a0, a1, a2], [b0, b1, b2]) = (a, b);
+    [op(a0, b0), op(a1, b1), op(a2, b2)]
 }
 
 #[cfg(test)]

@@ -40,5 +40,8 @@ fn baked_in_build_rs_and_at_run_time_draw_the_same_pixels() {
     // 28 edges, less the 6 between coplanar quads (two inside each cap, one on the
     // bottom and one on the left side); half of the 14 faces face the eye.
     assert_eq!((stats.feature_edges, stats.faces_drawn), (22, 7));
-    assert!(flash.affected_area().size.width > 32, "the fit fills the frame");
+    assert!(
+        flash.affected_area().size.width > 32,
+        "the fit fills the frame"
+    );
 }

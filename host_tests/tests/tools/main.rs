@@ -5,5 +5,6 @@
 //! MODULE::`).
 
 mod engines_table;
+mod fit_library;
 mod recommend;
 mod render_cli;
