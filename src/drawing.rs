@@ -32,6 +32,25 @@ use crate::render::{
 use crate::subpixel::U4;
 use crate::{Camera, Error, FillSolid, SpanSink, Viewport};
 
+/// `Default` is `new()` for a drawing of any sizes.
+macro_rules! default_is_new {
+    ($drawing:ident) => {
+        impl<
+                'm,
+                const V: usize,
+                const F: usize,
+                const E: usize,
+                const FACETS: usize,
+                const LINES: usize,
+            > Default for $drawing<'m, V, F, E, FACETS, LINES>
+        {
+            fn default() -> Self {
+                Self::new()
+            }
+        }
+    };
+}
+
 /// The crease angle [`Drawing::bake`] classifies edges with, degrees (the
 /// `render` command's default).
 pub const CREASE_DEG: f32 = 30.0;
@@ -85,19 +104,7 @@ struct Baked<'m> {
     edges: usize,
 }
 
-impl<
-        'm,
-        const V: usize,
-        const F: usize,
-        const E: usize,
-        const FACETS: usize,
-        const LINES: usize,
-    > Default for Drawing<'m, V, F, E, FACETS, LINES>
-{
-    fn default() -> Self {
-        Self::new()
-    }
-}
+default_is_new!(Drawing);
 
 impl<
         'm,
@@ -219,19 +226,7 @@ pub struct BakedDrawing<
     frame: FrameBuffers<V, F, E, FACETS, LINES>,
 }
 
-impl<
-        'm,
-        const V: usize,
-        const F: usize,
-        const E: usize,
-        const FACETS: usize,
-        const LINES: usize,
-    > Default for BakedDrawing<'m, V, F, E, FACETS, LINES>
-{
-    fn default() -> Self {
-        Self::new()
-    }
-}
+default_is_new!(BakedDrawing);
 
 impl<
         'm,
