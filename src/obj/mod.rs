@@ -30,8 +30,8 @@
 //!             f 1 3 2\nf 1 2 4\nf 2 3 4\nf -4 -1 -2 # the fourth face, from the end\n";
 //! let tetra = pbuffer::obj::parse(text, "tetra.obj")?;
 //! assert_eq!((tetra.vertices.len(), tetra.face_count()), (4, 4));
-//! assert_eq!(&tetra.indices[9..], &[0, 3, 1]);
-//! let mesh = tetra.mesh()?; // a validated `pbuffer::Mesh` borrowing `tetra`
+//! assert_eq!(&tetra.indices[9..], &[0, 3, 2]);
+//! let mesh = tetra.mesh().map_err(|e| e.to_string())?; // a `pbuffer::Mesh` borrowing `tetra`
 //! assert_eq!(mesh.face_count(), 4);
 //!
 //! let bad = pbuffer::obj::parse("v 0 0 0\nv 1 nan 0\n", "bad.obj").unwrap_err();
