@@ -10,8 +10,9 @@
 //! What the short form costs against the long one ([`FastRenderer`] with a
 //! [`FastWorkspace`] sized by hand and the constants baked on the host):
 //! - the baking scratch stays in the `Drawing` (48 bytes an edge and 4 a vertex),
-//!   so a large mesh is better baked in a `build.rs` ([`BakedMesh::bake`],
-//!   [`BakedSource`]) and kept in flash;
+//!   so a large mesh is better baked in a `build.rs` (`pbuffer::bake`, feature
+//!   `std`, or [`BakedMesh::bake`] and [`BakedSource`]), kept in flash and drawn by a
+//!   [`BakedDrawing`], which holds only the buffers of a frame;
 //! - the facing bits take a word a face, and the line masks a word a row of the
 //!   display, where the engine needs a bit a face and two words per 32 columns:
 //!   the price of not naming derived sizes (stable Rust cannot compute them in a
@@ -30,6 +31,25 @@ use crate::render::{
 };
 use crate::subpixel::U4;
 use crate::{Camera, Error, FillSolid, SpanSink, Viewport};
+
+/// `Default` is `new()` for a drawing of any sizes.
+macro_rules! default_is_new {
+    ($drawing:ident) => {
+        impl<
+                'm,
+                const V: usize,
+                const F: usize,
+                const E: usize,
+                const FACETS: usize,
+                const LINES: usize,
+            > Default for $drawing<'m, V, F, E, FACETS, LINES>
+        {
+            fn default() -> Self {
+                Self::new()
+            }
+        }
+    };
+}
 
 /// The crease angle [`Drawing::bake`] classifies edges with, degrees (the
 /// `render` command's default).
@@ -71,12 +91,7 @@ pub struct Drawing<
     pub palette: MonoPalette,
     planes: [FacePlane; F],
     edges: [CompactEdge; E],
-    vertices: [FastVertex; V],
-    facing: [u32; F],
-    face_lists: [[u16; 2]; F],
-    line_links: [u16; E],
-    pool: [FastVertex; CLIPPED_CORNERS],
-    engine: FastRenderer<U4, FACETS, LINES>,
+    frame: FrameBuffers<V, F, E, FACETS, LINES>,
     weld: [u32; V],
     half_edges: [[HalfEdgeRecord; 2]; E],
     mesh_edges: [MeshEdge; E],
@@ -89,19 +104,7 @@ struct Baked<'m> {
     edges: usize,
 }
 
-impl<
-        'm,
-        const V: usize,
-        const F: usize,
-        const E: usize,
-        const FACETS: usize,
-        const LINES: usize,
-    > Default for Drawing<'m, V, F, E, FACETS, LINES>
-{
-    fn default() -> Self {
-        Self::new()
-    }
-}
+default_is_new!(Drawing);
 
 impl<
         'm,
@@ -116,26 +119,14 @@ impl<
     pub const fn new() -> Self {
         Self {
             baked: None,
-            settings: Settings {
-                mode: crate::DrawMode::Dashed,
-                cull: crate::Cull::Auto,
-                pattern: crate::Pattern::PAPER,
-                dashes: crate::render::Dashes::Screen,
-            },
-            palette: MonoPalette {
-                line: BinaryColor::On,
-            },
+            settings: DEFAULT_SETTINGS,
+            palette: DEFAULT_PALETTE,
             planes: [FacePlane {
                 normal: [0.0; 3],
                 centroid: [0.0; 3],
             }; F],
             edges: [CompactEdge::EMPTY; E],
-            vertices: [FastVertex::ZERO; V],
-            facing: [0; F],
-            face_lists: [[0; 2]; F],
-            line_links: [0; E],
-            pool: [FastVertex::ZERO; CLIPPED_CORNERS],
-            engine: FastRenderer::new(),
+            frame: FrameBuffers::new(),
             weld: [0; V],
             half_edges: [[HalfEdgeRecord::EMPTY; 2]; E],
             mesh_edges: [MeshEdge::EMPTY; E],
@@ -182,6 +173,169 @@ impl<
         let planes = self.planes.get(..baked.mesh.face_count()).unwrap_or(&[]);
         let edges = self.edges.get(..baked.edges).unwrap_or(&[]);
         let mesh = BakedMesh::baked_here(baked.mesh, planes, edges);
+        self.frame
+            .draw(&mesh, camera, (&self.settings, &self.palette), rows, target)
+    }
+}
+
+/// A mesh baked on the host and kept in flash (a [`BakedMesh`], as the `static`s of
+/// `pbuffer::bake` give it), drawn by the fast engine with only the buffers of a
+/// frame: room for `V` vertices, `F` faces and `E` edges (the generated `NAME_V`,
+/// `NAME_F`, `NAME_E`), and for `FACETS` facets and `LINES` feature lines crossing
+/// one row. Nothing is baked here, so it holds none of a [`Drawing`]'s baking
+/// scratch, face planes or edge list.
+///
+/// ```
+/// # use pbuffer::prelude::*;
+/// # use embedded_graphics::{mock_display::MockDisplay, pixelcolor::BinaryColor};
+/// use pbuffer::render::{BakedMesh, CompactEdge, FacePlane};
+/// use pbuffer::BakedDrawing;
+/// // In a firmware the planes and edges are `static`s a build.rs baked.
+/// let square = Mesh::new(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+///     &[0, 1, 2, 3], &[0, 4])?;
+/// let mut drawing = Drawing::<4, 1, 4>::new();
+/// drawing.bake(square)?;
+/// let (mut planes, mut edges) = ([FacePlane::default(); 1], [CompactEdge::EMPTY; 4]);
+/// let mut store = [pbuffer::MeshEdge::EMPTY; 4];
+/// let (mut weld, mut half) = ([0; 4], [pbuffer::HalfEdgeRecord::EMPTY; 4]);
+/// let adjacency = pbuffer::EdgeAdjacency::build(&square, 30.0, &mut weld, &mut half, &mut store)?;
+/// BakedMesh::bake(&square, &adjacency, &mut planes, &mut edges)?;
+///
+/// let mut baked = BakedDrawing::<4, 1, 4>::new();
+/// baked.set_mesh(BakedMesh::new(square, &planes, &edges)?)?;
+/// let camera = Camera::fit(&square, 64, 64)?;
+/// let mut display = MockDisplay::<BinaryColor>::new();
+/// let stats = baked.draw(&camera, &mut FrameRows::<64, 64>::new(), &mut display)?;
+/// assert_eq!((stats.faces_drawn, stats.feature_edges), (1, 4));
+/// # Ok::<(), pbuffer::Error>(())
+/// ```
+#[derive(Debug)]
+pub struct BakedDrawing<
+    'm,
+    const V: usize,
+    const F: usize,
+    const E: usize,
+    const FACETS: usize = 32,
+    const LINES: usize = 32,
+> {
+    mesh: Option<BakedMesh<'m>>,
+    /// How the frame is drawn, as a [`Drawing`]'s [`settings`](Drawing::settings).
+    pub settings: Settings,
+    /// The line colour (faces, in the surface modes, are dithered against it).
+    pub palette: MonoPalette,
+    frame: FrameBuffers<V, F, E, FACETS, LINES>,
+}
+
+default_is_new!(BakedDrawing);
+
+impl<
+        'm,
+        const V: usize,
+        const F: usize,
+        const E: usize,
+        const FACETS: usize,
+        const LINES: usize,
+    > BakedDrawing<'m, V, F, E, FACETS, LINES>
+{
+    /// No mesh yet; all zero, so a `static` of it is `.bss`.
+    pub const fn new() -> Self {
+        Self {
+            mesh: None,
+            settings: DEFAULT_SETTINGS,
+            palette: DEFAULT_PALETTE,
+            frame: FrameBuffers::new(),
+        }
+    }
+
+    /// [`new`](Self::new) showing `mesh`: the errors of [`set_mesh`](Self::set_mesh).
+    pub fn with_mesh(mesh: BakedMesh<'m>) -> Result<Self, Error> {
+        let mut drawing = Self::new();
+        drawing.set_mesh(mesh)?;
+        Ok(drawing)
+    }
+
+    /// Keeps `mesh` for [`draw`](Self::draw). More vertices, faces or edges than
+    /// `V`, `F` or `E` is `CapacityExceeded` naming the size needed, and then no mesh
+    /// is kept.
+    pub fn set_mesh(&mut self, mesh: BakedMesh<'m>) -> Result<(), Error> {
+        self.mesh = None;
+        need(mesh.mesh().vertices().len(), V)?;
+        need(mesh.mesh().face_count(), F)?;
+        need(mesh.edges().len(), E)?;
+        self.mesh = Some(mesh);
+        Ok(())
+    }
+
+    /// Draws the mesh seen by `camera` into `target`, as [`Drawing::draw`] does. No
+    /// mesh is `Err(NothingBaked)`.
+    pub fn draw<D: DrawTarget<Color = BinaryColor>, const W: usize, const H: usize>(
+        &mut self,
+        camera: &Camera,
+        rows: &mut FrameRows<W, H>,
+        target: &mut D,
+    ) -> Result<Stats, Error<D::Error>> {
+        let Some(mesh) = self.mesh else {
+            return Err(Error::NothingBaked);
+        };
+        self.frame
+            .draw(&mesh, camera, (&self.settings, &self.palette), rows, target)
+    }
+}
+
+/// [`Settings::default`], in a `const fn`.
+const DEFAULT_SETTINGS: Settings = Settings {
+    mode: crate::DrawMode::Dashed,
+    cull: crate::Cull::Auto,
+    pattern: crate::Pattern::PAPER,
+    dashes: crate::render::Dashes::Screen,
+};
+
+/// Lines on.
+const DEFAULT_PALETTE: MonoPalette = MonoPalette {
+    line: BinaryColor::On,
+};
+
+/// The buffers of one frame that grow with the mesh, and the engine: what a
+/// [`Drawing`] and a [`BakedDrawing`] share.
+#[derive(Debug)]
+struct FrameBuffers<
+    const V: usize,
+    const F: usize,
+    const E: usize,
+    const FACETS: usize,
+    const LINES: usize,
+> {
+    vertices: [FastVertex; V],
+    facing: [u32; F],
+    face_lists: [[u16; 2]; F],
+    line_links: [u16; E],
+    pool: [FastVertex; CLIPPED_CORNERS],
+    engine: FastRenderer<U4, FACETS, LINES>,
+}
+
+impl<const V: usize, const F: usize, const E: usize, const FACETS: usize, const LINES: usize>
+    FrameBuffers<V, F, E, FACETS, LINES>
+{
+    const fn new() -> Self {
+        Self {
+            vertices: [FastVertex::ZERO; V],
+            facing: [0; F],
+            face_lists: [[0; 2]; F],
+            line_links: [0; E],
+            pool: [FastVertex::ZERO; CLIPPED_CORNERS],
+            engine: FastRenderer::new(),
+        }
+    }
+
+    /// One frame of `mesh` into `target`, one span at a time.
+    fn draw<D: DrawTarget<Color = BinaryColor>, const W: usize, const H: usize>(
+        &mut self,
+        mesh: &BakedMesh<'_>,
+        camera: &Camera,
+        (settings, palette): (&Settings, &MonoPalette),
+        rows: &mut FrameRows<W, H>,
+        target: &mut D,
+    ) -> Result<Stats, Error<D::Error>> {
         let mut sink = FillSolid::new(target).map_err(Error::widen)?;
         rows.fit(sink.viewport()).map_err(Error::widen)?;
         let (face_links, slopes) = self
@@ -202,15 +356,8 @@ impl<
             slopes,
             phases: &mut [],
         };
-        self.engine.render(
-            &mesh,
-            camera,
-            &self.settings,
-            &mut ws,
-            &self.palette,
-            &mut sink,
-            &mut (),
-        )
+        self.engine
+            .render(mesh, camera, settings, &mut ws, palette, &mut sink, &mut ())
     }
 }
 

@@ -62,7 +62,7 @@
 //!   and Mousumi Dutt, *Visible Surface Detection*, lecture notes: the Z-buffer,
 //!   Newell-Newell-Sancha depth sort, Warnock subdivision, BSP trees, the scan-line
 //!   method, ray casting ([`order`] and the engines of [`render`]).
-#![no_std]
+#![cfg_attr(not(feature = "std"), no_std)]
 #![forbid(unsafe_code)]
 #![deny(missing_docs, missing_debug_implementations)]
 // Panic-freedom made visible: no unchecked index, unwrap, expect or panic outside
@@ -85,6 +85,8 @@
     unused_qualifications
 )]
 
+#[cfg(feature = "std")]
+pub mod bake;
 mod bits;
 pub mod camera;
 pub mod codes;
@@ -93,6 +95,8 @@ mod error;
 mod framebuffer;
 mod geometry;
 pub mod mesh;
+#[cfg(feature = "std")]
+pub mod obj;
 pub mod order;
 mod pattern;
 pub mod recommend;
@@ -102,9 +106,9 @@ mod sort;
 mod span;
 mod vector;
 
-pub use camera::{Camera, Projection};
+pub use camera::{Camera, Projection, FIT_FILL, FIT_FOV_DEG, FIT_VIEW_DIRECTION};
 pub use codes::SchemeViolation;
-pub use drawing::{Drawing, FrameRows, CLIPPED_CORNERS, CREASE_DEG};
+pub use drawing::{BakedDrawing, Drawing, FrameRows, CLIPPED_CORNERS, CREASE_DEG};
 pub use error::{CameraProblem, EdgeProblem, Error};
 pub use framebuffer::{packed_len, write_mask, PackedFramebuffer};
 pub use geometry::{ScreenPoint, Viewport, GUARD_BAND_PX, MAX_SUBPIXEL_BITS, MAX_VIEWPORT};

@@ -15,6 +15,11 @@
 //!
 //! Near and far bracket the vertices' depths with a margin of a quarter of the radius
 //! (near kept > 0 and at least half the nearest depth) for depth precision.
+//!
+//! The library offers the same rule to users as `pbuffer::Camera::fit` (its
+//! constants are these, in `f32`); the host computes it in `f64`, as the reference
+//! does everything, so the `render` command's frames are those of the f64 rule, and
+//! `tests/tools/fit_library.rs` holds the two cameras to agree within f32 rounding.
 
 use crate::frame::{CameraSpec, MeshData, ProjectionSpec};
 

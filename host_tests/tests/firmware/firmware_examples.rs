@@ -148,9 +148,12 @@ fn firmware_example_frames() {
             };
             let mut store = vec![MeshEdge::EMPTY; suz.indices.len()];
             // The converter's edge count sizes the firmware's edge store exactly.
-            assert_eq!(edges(&probe, &mut store).edges().len(), m.unique_edges());
+            assert_eq!(
+                edges(&probe, &mut store).edges().len(),
+                obj::unique_edges(&m)
+            );
             assert!(
-                m.unique_edges() <= 1024,
+                obj::unique_edges(&m) <= 1024,
                 "SuzanneBuffers holds 1024 edge bits"
             );
             assert_eq!((suz.vertices.len(), probe.face_count()), (507, 500));
@@ -160,7 +163,7 @@ fn firmware_example_frames() {
                 indices: pan.indices.clone(),
                 offsets: pan.offsets.clone(),
             };
-            assert_eq!(pm.unique_edges(), panel::EDGES);
+            assert_eq!(obj::unique_edges(&pm), panel::EDGES);
             // The buffers hold a band plus its apron.
             assert_eq!(
                 usize::from(storage_rows(suzanne::BAND as u16, 240)),

@@ -6,5 +6,6 @@
 
 mod documents;
 mod engines_table;
+mod fit_library;
 mod recommend;
 mod render_cli;

@@ -2,6 +2,7 @@
 //! conditions each scheme checks, then properties over many small graphs.
 
 extern crate std;
+use std::vec::Vec;
 
 mod conditions;
 mod paper;
@@ -32,7 +33,7 @@ const G: Visible = Visible::Surface(2);
 const Y: Visible = Visible::Surface(3);
 const BLANK: Visible = Visible::Blank;
 
-fn rows<const E: usize>(table: &ColourTable<E>) -> std::vec::Vec<(u128, Visible)> {
+fn rows<const E: usize>(table: &ColourTable<E>) -> Vec<(u128, Visible)> {
     table
         .entries()
         .iter()

@@ -1,6 +1,7 @@
 //! The grey coverage mode: sub-sample masks, resolution at shared edges, pictures.
 
 extern crate std;
+use std::string::String;
 use std::vec;
 use std::vec::Vec;
 
@@ -216,7 +217,7 @@ fn a_gray4_triangle() {
     let v = [[2.3, -4.6, 0.0], [10.9, -6.2, 0.0], [4.1, 2.6, 0.0]];
     let d = picture(&v, &[[0, 1, 2]], &flat::<Gray4>(255), DrawMode::Surfaces);
     let mut sum = 0u32;
-    let mut rows = std::string::String::new();
+    let mut rows = String::new();
     for y in 28..40 {
         for x in 33..45 {
             let p = d.get_pixel(embedded_graphics::prelude::Point::new(x, y));

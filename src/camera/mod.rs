@@ -5,6 +5,10 @@
 //! (micromath's trade a few parts in a thousand for speed): a camera error would
 //! shift the whole picture, not just a few pixels, so it is accurate to `f32`.
 
+mod fit;
+
+pub use fit::{FIT_FILL, FIT_FOV_DEG, FIT_VIEW_DIRECTION};
+
 use crate::mesh::Viewpoint;
 use crate::{CameraProblem, Error};
 
