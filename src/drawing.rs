@@ -19,6 +19,7 @@
 //!
 //! [`BakedSource`]: crate::render::BakedSource
 
+use crate::Capacity;
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::pixelcolor::BinaryColor;
 
@@ -49,7 +50,9 @@ pub const CLIPPED_CORNERS: usize = 64;
 /// let mesh = Mesh::new(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
 ///     &[0, 1, 2, 3], &[0, 4])?;
 /// let mut square = Drawing::<4, 1, 3>::new();
-/// assert_eq!(square.bake(mesh), Err(Error::CapacityExceeded { needed: 4, capacity: 3 }));
+/// let short = Error::CapacityExceeded { what: Capacity::Edges, needed: 4, capacity: 3 };
+/// assert_eq!(square.bake(mesh), Err(short));
+/// assert_eq!(short.to_string(), "mesh edges (E): 4 needed, capacity 3");
 /// # Ok::<(), Error>(())
 /// ```
 #[derive(Debug)]
@@ -149,9 +152,9 @@ impl<
     /// nothing stays baked.
     pub fn bake(&mut self, mesh: Mesh<'m>) -> Result<(), Error> {
         self.baked = None;
-        need(mesh.vertices().len(), V)?;
-        need(mesh.face_count(), F)?;
-        need(mesh.indices().len().div_ceil(2), E)?;
+        need(Capacity::Vertices, mesh.vertices().len(), V)?;
+        need(Capacity::Faces, mesh.face_count(), F)?;
+        need(Capacity::Edges, mesh.indices().len().div_ceil(2), E)?;
         let adjacency = EdgeAdjacency::build(
             &mesh,
             CREASE_DEG,
@@ -243,8 +246,8 @@ impl<const W: usize, const H: usize> FrameRows<W, H> {
     /// `W`, `H` and the line masks' `H` (two words per 32 columns) that is short.
     fn fit(&self, viewport: Viewport) -> Result<(), Error> {
         let width = usize::from(viewport.width);
-        need(width, W)?;
-        need(usize::from(viewport.height), H)?;
-        need(2 * width.div_ceil(32), H)
+        need(Capacity::RowWidth, width, W)?;
+        need(Capacity::Rows, usize::from(viewport.height), H)?;
+        need(Capacity::LineMasks, 2 * width.div_ceil(32), H)
     }
 }

@@ -105,7 +105,7 @@ mod vector;
 pub use camera::{Camera, Projection};
 pub use codes::SchemeViolation;
 pub use drawing::{Drawing, FrameRows, CLIPPED_CORNERS, CREASE_DEG};
-pub use error::{CameraProblem, EdgeProblem, Error};
+pub use error::{CameraProblem, Capacity, EdgeProblem, Error};
 pub use framebuffer::{packed_len, write_mask, PackedFramebuffer};
 pub use geometry::{ScreenPoint, Viewport, GUARD_BAND_PX, MAX_SUBPIXEL_BITS, MAX_VIEWPORT};
 pub use mesh::{
@@ -149,5 +149,5 @@ pub mod conventions {}
 
 /// The names one frame needs: `use pbuffer::prelude::*;`.
 pub mod prelude {
-    pub use crate::{Camera, DrawMode, Drawing, Error, FrameRows, Mesh, Settings};
+    pub use crate::{Camera, Capacity, DrawMode, Drawing, Error, FrameRows, Mesh, Settings};
 }

@@ -1,5 +1,6 @@
 //! The BSP tree: types, the iterative build and the front-to-back walk.
 
+use crate::Capacity;
 use core::ops::Range;
 
 use crate::error::need;
@@ -336,8 +337,9 @@ impl<'s> BspTree<'s> {
         stack: &mut [u32],
         mut visit: impl FnMut(usize),
     ) -> Result<(), Error> {
-        need(self.depth, stack.len())?;
+        need(Capacity::BspStack, self.depth, stack.len())?;
         let overflow = Error::CapacityExceeded {
+            what: Capacity::BspStack,
             needed: self.depth,
             capacity: stack.len(),
         };
@@ -383,8 +385,8 @@ impl<'s> BspTree<'s> {
         stack: &mut [u32],
         rank: &mut [u32],
     ) -> Result<(), Error> {
-        need(self.depth, stack.len())?;
-        need(self.fragment_count(), rank.len())?;
+        need(Capacity::BspStack, self.depth, stack.len())?;
+        need(Capacity::FragmentRanks, self.fragment_count(), rank.len())?;
         let mut next = 0u32;
         self.visit_front_to_back(view, stack, |fragment| {
             if let Some(r) = rank.get_mut(fragment) {

@@ -27,6 +27,7 @@ mod transform;
 #[cfg(test)]
 mod two_squares;
 
+use crate::Capacity;
 use embedded_graphics_core::pixelcolor::BinaryColor;
 use heapless::Vec;
 
@@ -249,8 +250,12 @@ fn band_rows(viewport: Viewport, samples: usize, line_words: usize) -> Result<u1
     }
     .min((line_words / (2 * row_words).max(1)).min(usize::from(height)) as u16);
     if height > 0 && rows == 0 {
-        need(usize::from(IdBand::rows_needed(1, height)) * w, samples)?;
-        need(2 * row_words, line_words)?;
+        need(
+            Capacity::BandSamples,
+            usize::from(IdBand::rows_needed(1, height)) * w,
+            samples,
+        )?;
+        need(Capacity::BandLineWords, 2 * row_words, line_words)?;
     }
     Ok(rows)
 }
@@ -277,9 +282,17 @@ fn begin_frame<'f, 'm>(
         s,
     } = *input;
     let faces = mesh.face_count();
-    need(positions.len().max(mesh.vertices().len()), vertices.len())?;
-    need(faces.div_ceil(32), drawn.len())?;
-    need(edges.edges().len().div_ceil(32), features.len())?;
+    need(
+        Capacity::Vertices,
+        positions.len().max(mesh.vertices().len()),
+        vertices.len(),
+    )?;
+    need(Capacity::FaceBits, faces.div_ceil(32), drawn.len())?;
+    need(
+        Capacity::EdgeBits,
+        edges.edges().len().div_ceil(32),
+        features.len(),
+    )?;
     let max_abs = positions
         .iter()
         .flatten()
@@ -360,7 +373,7 @@ fn index_polygon<const POLY: usize>(
         return Ok(false);
     }
     if any == 0 {
-        need(idx.len(), POLY)?;
+        need(Capacity::FaceCorners, idx.len(), POLY)?;
         for &v in idx {
             if let Some(p) = vertices.get(v as usize) {
                 let _ = out.push(p.screen());
@@ -369,7 +382,7 @@ fn index_polygon<const POLY: usize>(
         return Ok(true);
     }
     let mut clip: Vec<ClipVertex, POLY> = Vec::new();
-    need(idx.len(), POLY)?;
+    need(Capacity::FaceCorners, idx.len(), POLY)?;
     for &v in idx {
         if let Some(c) = ctx.clip_of(vertices, v) {
             let _ = clip.push(c);

@@ -3,6 +3,7 @@
 //! pixel, hidden ones included, each with the number of drawn faces in front of it
 //! there: the paper's use case of choosing a hidden line on a part behind another.
 
+use crate::Capacity;
 use fixed::types::extra::LeEqU32;
 use heapless::Vec;
 
@@ -168,7 +169,7 @@ pub fn pick<Frac: LeEqU32, const POLY: usize>(
         }
         found += 1;
     }
-    need(found, edges.len())?;
+    need(Capacity::PickedEdges, found, edges.len())?;
     if let Some(list) = edges.get_mut(..found) {
         crate::sort::sort_by_key(list, |p| (p.faces_in_front, u32::MAX - p.nearness, p.edge));
     }

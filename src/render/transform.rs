@@ -7,6 +7,7 @@
 //! `i64` and is stored as `i32` after a right shift by 29: one world unit along a
 //! clip axis is `2^sigma`, `sigma = k + m - 29`.
 
+use crate::Capacity;
 use heapless::Vec;
 
 use crate::camera::Camera;
@@ -428,6 +429,7 @@ impl FixedView {
             }
             if needed > N {
                 return Err(Error::CapacityExceeded {
+                    what: Capacity::ClippedFaceCorners,
                     needed,
                     capacity: N,
                 });

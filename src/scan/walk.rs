@@ -4,6 +4,7 @@
 //! sorted by first row, an active edge list of indices into it, and a 32-bit DDA per
 //! edge. Beyond the guard band each clipped edge is evaluated exactly per row.
 
+use crate::Capacity;
 use fixed::types::extra::LeEqU32;
 use heapless::Vec;
 
@@ -248,7 +249,11 @@ impl<const N: usize> PolygonWalker<N> {
 /// `Err(CapacityExceeded)` when `needed` edges do not fit `capacity`.
 fn check_capacity(needed: usize, capacity: usize) -> Result<(), Error> {
     if needed > capacity {
-        return Err(Error::CapacityExceeded { needed, capacity });
+        return Err(Error::CapacityExceeded {
+            what: Capacity::ActiveEdges,
+            needed,
+            capacity,
+        });
     }
     Ok(())
 }

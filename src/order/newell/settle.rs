@@ -2,6 +2,7 @@
 //! before it, else a fragment is moved ahead (a shuffle, marked) or a cycle is cut
 //! by a split; the list's order (farthest depth first) and its insertions.
 
+use crate::Capacity;
 use core::cmp::Reverse;
 
 use super::sort::{Sorter, DEAD};
@@ -148,6 +149,7 @@ impl Sorter<'_, '_, '_> {
         let len = self.len;
         if len >= self.list.len() {
             return Err(Self::err(
+                Capacity::OrderWork,
                 len.saturating_add(1).saturating_mul(3),
                 self.work_words,
             ));

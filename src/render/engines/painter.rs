@@ -4,6 +4,7 @@
 //! overlap cyclically or interpenetrate, and is kept to show that), or a depth
 //! order made elsewhere (a BSP tree walked for the view, Newell's sort).
 
+use crate::Capacity;
 use core::marker::PhantomData;
 use core::ops::Range;
 
@@ -84,7 +85,7 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> PainterRenderer<Frac,
                 (o.surfaces, Some(o.source), Some(o.rank))
             }
         };
-        need(surfaces.face_count(), list.len()).map_err(Error::widen)?;
+        need(Capacity::DepthOrder, surfaces.face_count(), list.len()).map_err(Error::widen)?;
         let input = FrameInput {
             mesh,
             positions: surfaces.vertices(),
@@ -332,6 +333,7 @@ mod tests {
         assert_eq!(
             paint(&v, &idx, &off, 1),
             Err(Error::CapacityExceeded {
+                what: Capacity::DepthOrder,
                 needed: 2,
                 capacity: 1
             })

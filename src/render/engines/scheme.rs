@@ -20,6 +20,7 @@
 //! paths its codes depend on the path (a surface's depth rank there), so one code per
 //! face cannot be added across segments; it is not drawn here.
 
+use crate::Capacity;
 use core::marker::PhantomData;
 
 use embedded_graphics_core::pixelcolor::{BinaryColor, PixelColor};
@@ -155,6 +156,7 @@ impl<'a, const W: usize, const E: usize> SchemeCoding<'a, W, E> {
         match self.table.lookup(code) {
             Some(Visible::Blank) => Ok(0),
             Some(Visible::Surface(s)) => s.checked_add(1).ok_or(Error::CapacityExceeded {
+                what: Capacity::SurfaceIds,
                 needed: usize::from(s) + 1,
                 capacity: usize::from(u16::MAX),
             }),
@@ -236,7 +238,12 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> SchemeRenderer<Frac, 
                 expected: mesh.face_count(),
             }));
         }
-        need(usize::from(sink.viewport().width), codes.len()).map_err(Error::widen)?;
+        need(
+            Capacity::RowCodes,
+            usize::from(sink.viewport().width),
+            codes.len(),
+        )
+        .map_err(Error::widen)?;
         let input = FrameInput::of_mesh(mesh, edges, camera, settings, Subpixel::<Frac>::BITS);
         let mut pass = Fill::<Frac, EDGES, POLY, W, E> {
             scan: &mut self.scan,

@@ -10,6 +10,7 @@ mod row;
 
 pub use row::{prefix_xor, CodeRow};
 
+use crate::Capacity;
 use fixed::types::extra::LeEqU32;
 
 use super::{PolygonWalker, RowRuns};
@@ -65,6 +66,7 @@ impl<const EDGES: usize, const WORDS: usize> XorFiller<EDGES, WORDS> {
         let words = width.div_ceil(32);
         if words > WORDS {
             return Err(Error::CapacityExceeded {
+                what: Capacity::RowWords,
                 needed: words,
                 capacity: WORDS,
             });

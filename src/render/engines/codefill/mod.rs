@@ -19,6 +19,7 @@ mod resolve;
 mod row;
 mod sliced;
 
+use crate::Capacity;
 use core::marker::PhantomData;
 
 use embedded_graphics_core::pixelcolor::PixelColor;
@@ -429,7 +430,7 @@ impl<
             }
             count += 1;
         }
-        need(count, order.len())?;
+        need(Capacity::DepthOrder, count, order.len())?;
         if let Some(order) = order.get_mut(..count) {
             crate::sort::sort_by_key(order, |&k| k);
         }

@@ -1,6 +1,7 @@
 //! The row scan of the code-fill engine: faces activated at their first row, the
 //! crossings of the row taken in order, each toggling its face in the surface code.
 
+use crate::Capacity;
 use heapless::Vec;
 
 use fixed::types::extra::LeEqU32;
@@ -320,6 +321,7 @@ impl<
     ) -> Result<(), Error> {
         let Some(&slot) = self.free.last() else {
             return Err(Error::CapacityExceeded {
+                what: Capacity::ActiveFaces,
                 needed: self.live.len() + 1,
                 capacity: FACES,
             });
@@ -342,6 +344,7 @@ impl<
             let width = ctx.viewport.width;
             if self.edges.insert(edge, slot, ctx.s, width).is_err() {
                 return Err(Error::CapacityExceeded {
+                    what: Capacity::ActiveEdges,
                     needed: self.edges.len() + poly.len() - added,
                     capacity: EDGES,
                 });

@@ -7,6 +7,7 @@
 //! code is as wide as the faces active on the row. The buffer is cleared as it is
 //! read; the frame clears it once before its first row.
 
+use crate::Capacity;
 use fixed::types::extra::LeEqU32;
 
 use super::resolve::RowFaces;
@@ -54,6 +55,7 @@ impl<
         let need = width * words + width.div_ceil(32);
         let Some(codes) = codes.get_mut(..need) else {
             return Err(Error::CapacityExceeded {
+                what: Capacity::RowCodes,
                 needed: need,
                 capacity: codes.len(),
             });

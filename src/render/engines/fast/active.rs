@@ -3,6 +3,7 @@
 //! index, so that a facet drawn later never has a lower face index than one
 //! before it in the row: the tie rule then needs one compare a pixel.
 
+use crate::Capacity;
 use heapless::Vec;
 
 use super::facets::{CornerSource, Facet};
@@ -52,6 +53,7 @@ impl<const N: usize> ActiveFacets<N> {
         build: impl FnOnce(&mut Facet) -> bool,
     ) -> Result<(u16, Option<u16>), Error> {
         let full = Error::CapacityExceeded {
+            what: Capacity::ActiveFacets,
             needed: N + 1,
             capacity: N,
         };

@@ -3,6 +3,7 @@
 //! list (two vertex and two face indices and the edge's kind). A frame then
 //! computes nothing that depends only on the mesh.
 
+use crate::Capacity;
 use core::fmt;
 
 use super::edge::{CompactEdge, MAX_HOLES, NO_HOLE};
@@ -55,8 +56,8 @@ impl<'a> BakedMesh<'a> {
         check_counts(mesh)?;
         let faces = mesh.face_count();
         let all = adjacency.edges();
-        need(faces, planes.len())?;
-        need(all.len(), edges.len())?;
+        need(Capacity::Faces, faces, planes.len())?;
+        need(Capacity::Edges, all.len(), edges.len())?;
         for (f, slot) in planes.iter_mut().enumerate().take(faces) {
             *slot = FacePlane {
                 normal: mesh.face_normal(f),

@@ -11,6 +11,7 @@
 //! one unsigned compare a pixel takes the nearer face, and within the tie the lower
 //! index.
 
+use crate::Capacity;
 use heapless::Vec;
 
 use super::clip::CLIP_CORNERS;
@@ -528,6 +529,7 @@ impl Facet {
             let b = src.corner(self.corners, self.face, (i + 1) % n).half();
             if let Some(x) = crossing(a, b, y, s) {
                 xs.push(x).map_err(|_| Error::CapacityExceeded {
+                    what: Capacity::FaceCorners,
                     needed: n,
                     capacity: MAX_CORNERS,
                 })?;

@@ -2,6 +2,7 @@
 //! `buckets`), then one row at a time: facets made active as the row reaches them
 //! fill the row, lines are tested against it, spans go out.
 
+use crate::Capacity;
 use fixed::types::extra::LeEqU32;
 
 use crate::Pattern;
@@ -254,19 +255,23 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         let mesh = baked.mesh();
         let faces = mesh.face_count();
         let (w, h) = (usize::from(w), usize::from(h));
-        need(mesh.vertices().len(), ws.vertices.len())?;
-        need(faces.div_ceil(32), ws.facing.len())?;
-        need(faces, ws.face_links.len())?;
-        need(faces, ws.slopes.len())?;
-        need(baked.edges().len(), ws.line_links.len())?;
-        need(2 * h, ws.heads.len())?;
-        need(w, ws.row.len())?;
-        need(line_masks(along) * w.div_ceil(32), ws.masks.len())?;
+        need(Capacity::Vertices, mesh.vertices().len(), ws.vertices.len())?;
+        need(Capacity::FaceBits, faces.div_ceil(32), ws.facing.len())?;
+        need(Capacity::Faces, faces, ws.face_links.len())?;
+        need(Capacity::Faces, faces, ws.slopes.len())?;
+        need(Capacity::Edges, baked.edges().len(), ws.line_links.len())?;
+        need(Capacity::Rows, 2 * h, ws.heads.len())?;
+        need(Capacity::RowWidth, w, ws.row.len())?;
+        need(
+            Capacity::LineMasks,
+            line_masks(along) * w.div_ceil(32),
+            ws.masks.len(),
+        )?;
         if probe {
-            need(w, ws.ids.len())?;
+            need(Capacity::RowWidth, w, ws.ids.len())?;
         }
         if along {
-            need(LINES, ws.phases.len())?;
+            need(Capacity::DashPhases, LINES, ws.phases.len())?;
         }
         Ok(())
     }
@@ -335,6 +340,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         for &v in corners {
             let p = vertices.get(v as usize).copied().unwrap_or_default();
             poly.push(p).map_err(|_| Error::CapacityExceeded {
+                what: Capacity::FaceCorners,
                 needed: n,
                 capacity: MAX_CORNERS,
             })?;
@@ -374,6 +380,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         let room = pool.len().min(usize::from(u16::MAX));
         let Some(slots) = pool.get_mut(pool_used..end).filter(|_| end <= room) else {
             return Err(Error::CapacityExceeded {
+                what: Capacity::ClippedCorners,
                 needed: end,
                 capacity: room,
             });
@@ -463,6 +470,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             let along = ALONG.then(|| (dashing, dash::anchor(map, baked, edge, ea, a)));
             if let Some((line, phase)) = ActiveLine::new(a, b, edge.faces, e, map.s, along) {
                 let full = Error::CapacityExceeded {
+                    what: Capacity::ActiveLines,
                     needed: LINES + 1,
                     capacity: LINES,
                 };

@@ -2,6 +2,7 @@
 //! small frame drawn exactly once per pixel.
 
 extern crate std;
+use crate::Capacity;
 use std::vec;
 use std::vec::Vec;
 
@@ -220,6 +221,7 @@ fn too_little_lent_storage_or_room_is_an_error_with_the_size_needed() {
     assert_eq!(
         r.unwrap_err(),
         Error::CapacityExceeded {
+            what: Capacity::Vertices,
             needed: 4,
             capacity: 3
         }
@@ -238,6 +240,7 @@ fn too_little_lent_storage_or_room_is_an_error_with_the_size_needed() {
     assert_eq!(
         r.unwrap_err(),
         Error::CapacityExceeded {
+            what: Capacity::ActiveFacets,
             needed: 2,
             capacity: 1
         }

@@ -2,6 +2,7 @@
 //! Z-buffer's frame on a scene deep enough for a many-level hierarchy.
 
 extern crate std;
+use crate::Capacity;
 use std::string::String;
 use std::vec;
 use std::vec::Vec;
@@ -325,6 +326,7 @@ fn too_little_storage_is_an_error_with_the_size_needed() {
     assert_eq!(
         run(5, 2).unwrap_err(),
         Error::CapacityExceeded {
+            what: Capacity::RaycastFaces,
             needed: 3,
             capacity: 2
         }
@@ -332,6 +334,7 @@ fn too_little_storage_is_an_error_with_the_size_needed() {
     assert_eq!(
         run(4, 3).unwrap_err(),
         Error::CapacityExceeded {
+            what: Capacity::BvhNodes,
             needed: 5,
             capacity: 4
         }

@@ -18,6 +18,7 @@
 //! bounding boxes, up to 512 per band and 128 per row; a longer diagonal sliver or a
 //! sharp tip is still missed where no centre near it is covered.
 
+use crate::Capacity;
 use embedded_graphics_core::pixelcolor::{Gray8, GrayColor, PixelColor};
 use heapless::Vec;
 
@@ -295,7 +296,7 @@ impl<'p, G: GreyPalette, const POLY: usize> GreyCompose<'p, G, POLY> {
                 found += 1;
             }
         }
-        crate::render::need(found, self.small.len())?;
+        crate::render::need(Capacity::SmallFaces, found, self.small.len())?;
         self.small_len = found;
         Ok(())
     }
@@ -365,6 +366,7 @@ fn neighbourhood(
             // Insertion in order: a few ids.
             let at = ids.iter().position(|&k| k > id).unwrap_or(ids.len());
             ids.insert(at, id).map_err(|_| Error::CapacityExceeded {
+                what: Capacity::PixelCandidates,
                 needed: CANDIDATES + 1,
                 capacity: CANDIDATES,
             })?;
