@@ -4,8 +4,9 @@
 //! their kinds, hole labels) and keeps every buffer the engine needs that grows
 //! with the mesh; [`FrameRows`] keeps those that grow with the display. Both are
 //! sized by const generics, zero-initialised by a `const fn new`, and can live in
-//! `static`s. Too small a size is [`Error::CapacityExceeded`] with the size
-//! needed, never a truncated picture.
+//! `static`s. Too small a size is [`Error::CapacityExceeded`] naming the parameter
+//! ([`Capacity`]) and the size needed, never a truncated picture;
+//! [`Drawing::measure`] tells every size a mesh and its views need at once.
 //!
 //! What the short form costs against the long one ([`FastRenderer`] with a
 //! [`FastWorkspace`] sized by hand and the constants baked on the host):
@@ -26,8 +27,8 @@ use embedded_graphics_core::pixelcolor::BinaryColor;
 use crate::error::need;
 use crate::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
 use crate::render::{
-    BakedMesh, CompactEdge, FacePlane, FastRenderer, FastVertex, FastWorkspace, MonoPalette,
-    Settings, Stats,
+    BakedMesh, CompactEdge, FacePlane, FastRenderer, FastVertex, FastWorkspace, FrameNeeds,
+    MonoPalette, Settings, Stats,
 };
 use crate::subpixel::U4;
 use crate::{Camera, Error, FillSolid, SpanSink, Viewport};
@@ -172,27 +173,87 @@ impl<
 
     /// Draws the baked mesh seen by `camera` into `target`, whose bounding box is
     /// the frame (at most `W` x `H` of `rows`), one span at a time
-    /// ([`DrawTarget::fill_solid`]). Nothing baked is `Err(NothingBaked)`.
+    /// ([`DrawTarget::fill_solid`]). Nothing baked is `Err(NothingBaked)`. More
+    /// facets or lines active on a row than `FACETS` or `LINES`, or more clipped
+    /// corners than [`CLIPPED_CORNERS`], is `CapacityExceeded` with the frame's
+    /// true need (its peak, counted on past the limit), and no frame.
     pub fn draw<D: DrawTarget<Color = BinaryColor>, const W: usize, const H: usize>(
         &mut self,
         camera: &Camera,
         rows: &mut FrameRows<W, H>,
         target: &mut D,
     ) -> Result<Stats, Error<D::Error>> {
+        let mut sink = FillSolid::new(target).map_err(Error::widen)?;
+        let mut frame = self.frame(rows, sink.viewport()).map_err(Error::widen)?;
+        frame.engine.render(
+            &frame.mesh,
+            camera,
+            frame.settings,
+            &mut frame.ws,
+            frame.palette,
+            &mut sink,
+            &mut (),
+        )
+    }
+
+    /// Every size the baked mesh seen by each of `cameras` in frames of
+    /// `viewport` needs: the `V`, `F`, `E`, `FACETS`, `LINES` of a `Drawing` and
+    /// the `W`, `H` of its [`FrameRows`], and the clipped corners (at most
+    /// [`CLIPPED_CORNERS`] fit). Nothing is drawn, and this drawing's own
+    /// `FACETS` and `LINES` may be smaller than what it reports, so a large
+    /// drawing on the host can size a small one for the device. `rows` must hold
+    /// `viewport` (`CapacityExceeded` else); nothing baked is `Err(NothingBaked)`.
+    pub fn measure<const W: usize, const H: usize>(
+        &mut self,
+        cameras: &[Camera],
+        rows: &mut FrameRows<W, H>,
+        viewport: Viewport,
+    ) -> Result<DrawingNeeds, Error> {
+        let Frame {
+            mesh,
+            mut ws,
+            engine,
+            settings,
+            ..
+        } = self.frame(rows, viewport)?;
+        let mut frames = FrameNeeds::default();
+        for camera in cameras {
+            let one = engine.needs(&mesh, camera, settings, &mut ws, viewport)?;
+            frames = frames.max(one);
+        }
+        let inner = mesh.mesh();
+        let width = usize::from(viewport.width);
+        Ok(DrawingNeeds {
+            vertices: inner.vertices().len(),
+            faces: inner.face_count(),
+            edges: mesh.edges().len().max(inner.indices().len().div_ceil(2)),
+            facets: frames.facets,
+            lines: frames.lines,
+            clipped_corners: frames.clipped_corners,
+            width,
+            height: usize::from(viewport.height).max(2 * width.div_ceil(32)),
+        })
+    }
+
+    /// The baked mesh and the engine's workspace for a frame of `viewport`.
+    fn frame<'s, const W: usize, const H: usize>(
+        &'s mut self,
+        rows: &'s mut FrameRows<W, H>,
+        viewport: Viewport,
+    ) -> Result<Frame<'s, FACETS, LINES>, Error> {
         let Some(baked) = self.baked else {
             return Err(Error::NothingBaked);
         };
+        rows.fit(viewport)?;
         let planes = self.planes.get(..baked.mesh.face_count()).unwrap_or(&[]);
         let edges = self.edges.get(..baked.edges).unwrap_or(&[]);
         let mesh = BakedMesh::baked_here(baked.mesh, planes, edges);
-        let mut sink = FillSolid::new(target).map_err(Error::widen)?;
-        rows.fit(sink.viewport()).map_err(Error::widen)?;
         let (face_links, slopes) = self
             .face_lists
             .as_flattened_mut()
             .split_at_mut_checked(F)
             .unwrap_or_default();
-        let mut ws = FastWorkspace {
+        let ws = FastWorkspace {
             vertices: &mut self.vertices,
             facing: &mut self.facing,
             face_links,
@@ -205,16 +266,50 @@ impl<
             slopes,
             phases: &mut [],
         };
-        self.engine.render(
-            &mesh,
-            camera,
-            &self.settings,
-            &mut ws,
-            &self.palette,
-            &mut sink,
-            &mut (),
-        )
+        Ok(Frame {
+            mesh,
+            ws,
+            engine: &mut self.engine,
+            settings: &self.settings,
+            palette: &self.palette,
+        })
     }
+}
+
+/// A [`Drawing`]'s parts for one frame: the baked mesh, the engine's workspace,
+/// the engine and how it draws.
+struct Frame<'s, const FACETS: usize, const LINES: usize> {
+    mesh: BakedMesh<'s>,
+    ws: FastWorkspace<'s>,
+    engine: &'s mut FastRenderer<U4, FACETS, LINES>,
+    settings: &'s Settings,
+    palette: &'s MonoPalette,
+}
+
+/// What a baked mesh and its views need ([`Drawing::measure`]): the sizes to give
+/// a [`Drawing`] and its [`FrameRows`] that draw them, each the one its
+/// [`Capacity`] names when short.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
+pub struct DrawingNeeds {
+    /// `V`: the mesh's vertices ([`Capacity::Vertices`]).
+    pub vertices: usize,
+    /// `F`: the mesh's faces ([`Capacity::Faces`]).
+    pub faces: usize,
+    /// `E`: the larger of the unique edges and half the corners ([`Capacity::Edges`]).
+    pub edges: usize,
+    /// `FACETS`: the most facets active on a row in any view ([`Capacity::ActiveFacets`]).
+    pub facets: usize,
+    /// `LINES`: the most feature lines active on a row in any view
+    /// ([`Capacity::ActiveLines`]).
+    pub lines: usize,
+    /// Corners of clipped faces in the worst view ([`Capacity::ClippedCorners`]):
+    /// fixed at [`CLIPPED_CORNERS`] in a `Drawing`, the long form's pool otherwise.
+    pub clipped_corners: usize,
+    /// `W`: the frame's width ([`Capacity::RowWidth`]).
+    pub width: usize,
+    /// `H`: the frame's height, or the line masks' two words per 32 columns when
+    /// more ([`Capacity::Rows`], [`Capacity::LineMasks`]).
+    pub height: usize,
 }
 
 /// The buffers of a [`Drawing`] that grow with the display: room for frames up to

@@ -104,7 +104,7 @@ mod vector;
 
 pub use camera::{Camera, Projection};
 pub use codes::SchemeViolation;
-pub use drawing::{Drawing, FrameRows, CLIPPED_CORNERS, CREASE_DEG};
+pub use drawing::{Drawing, DrawingNeeds, FrameRows, CLIPPED_CORNERS, CREASE_DEG};
 pub use error::{CameraProblem, Capacity, EdgeProblem, Error};
 pub use framebuffer::{packed_len, write_mask, PackedFramebuffer};
 pub use geometry::{ScreenPoint, Viewport, GUARD_BAND_PX, MAX_SUBPIXEL_BITS, MAX_VIEWPORT};

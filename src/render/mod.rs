@@ -35,10 +35,10 @@ pub use compose::{FrameProbe, MonoPalette, Palette, SolidPalette};
 pub use engines::{
     BakedMesh, BakedSource, BvhNode, CodeFill, CodeFillRenderer, CodeWorkspace, CompactEdge,
     DashPhase, Depth, DepthOrder, FacePlane, Fast, FastRenderer, FastVertex, FastWorkspace,
-    GreyPalette, GreyShades, OneSegment, PaintOrder, Painter, PainterRenderer, RayFace, Raycast,
-    RaycastFigures, RaycastRenderer, RaycastSizes, RaycastStorage, RowCodes, Scheme, SchemeCoding,
-    SchemeRenderer, ScreenSegments, SmallFace, Visibility, Warnock, WarnockArea, WarnockFace,
-    WarnockRenderer, WarnockSizes, WarnockStorage, ZBuffer, ZBufferRenderer,
+    FrameNeeds, GreyPalette, GreyShades, OneSegment, PaintOrder, Painter, PainterRenderer, RayFace,
+    Raycast, RaycastFigures, RaycastRenderer, RaycastSizes, RaycastStorage, RowCodes, Scheme,
+    SchemeCoding, SchemeRenderer, ScreenSegments, SmallFace, Visibility, Warnock, WarnockArea,
+    WarnockFace, WarnockRenderer, WarnockSizes, WarnockStorage, ZBuffer, ZBufferRenderer,
     FAST_MAX_SUBPIXEL_BITS, MAX_CHECKED_FACES, MAX_CORNERS, MAX_FAST_FACES, MAX_HOLES, NO_HOLE,
 };
 pub use idpass::IdWorkspace;

@@ -113,9 +113,15 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             if depth {
                 let mut f = face_heads.get(y).copied().unwrap_or(NONE);
                 while f != NONE {
-                    pool_used = self
+                    pool_used = match self
                         .activate(baked, &map, vertices, pool, pool_used, slopes, f, yi)
-                        .map_err(Error::widen)?;
+                    {
+                        Ok(used) => used,
+                        Err(e) => {
+                            let e = self.overflow(e, baked, &map, settings, ws, viewport);
+                            return Err(e.widen());
+                        }
+                    };
                     f = face_links.get(usize::from(f)).copied().unwrap_or(NONE);
                 }
                 stats.peak_faces = stats.peak_faces.max(self.facets.len() as u32);
@@ -141,8 +147,12 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                         map: &map,
                         cache: vertices,
                     };
-                    self.activate_line::<ALONG>(dashing, seen, phases, e, &mut stats)
-                        .map_err(Error::widen)?;
+                    if let Err(e) =
+                        self.activate_line::<ALONG>(dashing, seen, phases, e, &mut stats)
+                    {
+                        let e = self.overflow(e, baked, &map, settings, ws, viewport);
+                        return Err(e.widen());
+                    }
                     e = line_links.get(usize::from(e)).copied().unwrap_or(NONE);
                 }
                 let (visible, hidden) = masks.split_at_mut(words);
@@ -230,7 +240,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
     }
 
     /// The lent storage and the frame's limits.
-    fn check(
+    pub(super) fn check(
         &self,
         baked: &BakedMesh<'_>,
         viewport: Viewport,
