@@ -206,3 +206,36 @@ impl fmt::Display for Capacity {
         f.write_str(self.name())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use std::string::ToString;
+
+    use super::Capacity;
+    use crate::Error;
+
+    #[test]
+    fn a_capacity_error_says_the_buffer_its_need_and_its_capacity() {
+        let e: Error = Error::CapacityExceeded {
+            what: Capacity::ActiveFacets,
+            needed: 128,
+            capacity: 32,
+        };
+        assert_eq!(
+            e.to_string(),
+            "active facets (FACETS): 128 needed, capacity 32"
+        );
+        let e: Error = Error::CapacityExceeded {
+            what: Capacity::ActiveLines,
+            needed: 111,
+            capacity: 64,
+        };
+        assert_eq!(
+            e.to_string(),
+            "active lines (LINES): 111 needed, capacity 64"
+        );
+        // Widening keeps the buffer named.
+        assert_eq!(e.widen::<()>().to_string(), e.to_string());
+    }
+}

@@ -191,22 +191,34 @@ pub struct Stats {
     pub feature_edges: u32,
     /// Spans: face spans depth-tested plus spans sent to the sink.
     pub spans: u32,
-    /// Bands rendered.
+    /// Bands rendered (the fast engine: one a row, so the frame's height).
     pub bands: u32,
-    /// Rows per band.
+    /// Rows per band (the fast engine: 1).
     pub band_rows: u32,
-    /// Bytes of depth samples per band (0 for the code-fill engine).
+    /// Bytes of depth samples: the Z-buffer engine's per band, the fast engine's
+    /// row (4 a pixel); 0 for the engines without a depth buffer.
     pub depth_buffer_bytes: u32,
     /// Code-fill engine: bits of the widest surface code a row needed (the most
-    /// faces covering one pixel). Schemes engine: the scheme's code width.
+    /// faces covering one pixel). Schemes engine: the scheme's code width. 0 for
+    /// the others.
     pub code_bits: u32,
-    /// Code-fill engine: the most faces active on one row.
+    /// The most faces active on one row, which is what the engine's active-face
+    /// table must hold. Fast engine ([`FastRenderer`], [`Drawing`](crate::Drawing)):
+    /// the peak of active *facets* (a face, or a bent face's fan triangle), the
+    /// `FACETS` that draws this frame ([`Capacity::ActiveFacets`](crate::Capacity::ActiveFacets)).
+    /// Code-fill engine: the peak of active faces, its `FACES`
+    /// ([`Capacity::ActiveFaces`](crate::Capacity::ActiveFaces)). 0 for the others.
     pub peak_faces: u32,
-    /// Code-fill engine: the most edges active on one row.
+    /// The most edges active on one row. Fast engine: the peak of active feature
+    /// *lines*, the `LINES` that draws this frame
+    /// ([`Capacity::ActiveLines`](crate::Capacity::ActiveLines)). Code-fill engine:
+    /// the peak of active polygon edges, its `EDGES`
+    /// ([`Capacity::ActiveEdges`](crate::Capacity::ActiveEdges)). 0 for the others.
     pub peak_edges: u32,
     /// The world distance one step of the stored depth stands for at the nearest
     /// drawn distance (depth is scaled to the distances the frame draws, not to
-    /// near and far): surfaces closer together than this there may tie.
+    /// near and far): surfaces closer together than this there may tie. Filled by
+    /// the fast and Z-buffer engines, 0 for the others.
     pub depth_step_near: f32,
     /// The same at the farthest drawn distance (larger under perspective).
     pub depth_step_far: f32,
