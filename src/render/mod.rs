@@ -205,15 +205,15 @@ pub struct Stats {
     /// The most faces active on one row, which is what the engine's active-face
     /// table must hold. Fast engine ([`FastRenderer`], [`Drawing`](crate::Drawing)):
     /// the peak of active *facets* (a face, or a bent face's fan triangle), the
-    /// `FACETS` that draws this frame ([`Capacity::ActiveFacets`](crate::Capacity::ActiveFacets)).
+    /// `FACETS` that draws this frame ([`Capacity::ActiveFacets`]).
     /// Code-fill engine: the peak of active faces, its `FACES`
-    /// ([`Capacity::ActiveFaces`](crate::Capacity::ActiveFaces)). 0 for the others.
+    /// ([`Capacity::ActiveFaces`]). 0 for the others.
     pub peak_faces: u32,
     /// The most edges active on one row. Fast engine: the peak of active feature
     /// *lines*, the `LINES` that draws this frame
-    /// ([`Capacity::ActiveLines`](crate::Capacity::ActiveLines)). Code-fill engine:
+    /// ([`Capacity::ActiveLines`]). Code-fill engine:
     /// the peak of active polygon edges, its `EDGES`
-    /// ([`Capacity::ActiveEdges`](crate::Capacity::ActiveEdges)). 0 for the others.
+    /// ([`Capacity::ActiveEdges`]). 0 for the others.
     pub peak_edges: u32,
     /// The world distance one step of the stored depth stands for at the nearest
     /// drawn distance (depth is scaled to the distances the frame draws, not to

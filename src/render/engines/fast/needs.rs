@@ -19,14 +19,14 @@ use crate::Capacity;
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
 pub struct FrameNeeds {
     /// The most facets active on one row: the `FACETS` that draws the frame
-    /// ([`Capacity::ActiveFacets`](crate::Capacity::ActiveFacets)).
+    /// ([`Capacity::ActiveFacets`]).
     pub facets: usize,
     /// The most feature lines active on one row: the `LINES` that draws it
-    /// ([`Capacity::ActiveLines`](crate::Capacity::ActiveLines)).
+    /// ([`Capacity::ActiveLines`]).
     pub lines: usize,
     /// Corners of the frame's clipped faces: the
     /// [`FastWorkspace::pool`] length that draws it
-    /// ([`Capacity::ClippedCorners`](crate::Capacity::ClippedCorners)).
+    /// ([`Capacity::ClippedCorners`]).
     pub clipped_corners: usize,
 }
 
