@@ -20,7 +20,6 @@
 //!
 //! [`BakedSource`]: crate::render::BakedSource
 
-use crate::Capacity;
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::pixelcolor::BinaryColor;
 
@@ -31,6 +30,7 @@ use crate::render::{
     MonoPalette, Settings, Stats,
 };
 use crate::subpixel::U4;
+use crate::Capacity;
 use crate::{Camera, Error, FillSolid, SpanSink, Viewport};
 
 /// The crease angle [`Drawing::bake`] classifies edges with, degrees (the

@@ -1,11 +1,11 @@
 //! The BSP tree: types, the iterative build and the front-to-back walk.
 
-use crate::Capacity;
 use core::ops::Range;
 
 use crate::error::need;
 use crate::mesh::{Mesh, Viewpoint};
 use crate::vector::dot;
+use crate::Capacity;
 use crate::Error;
 
 /// "No child" in [`BspNode::front`] and [`BspNode::back`].

@@ -27,7 +27,6 @@ mod transform;
 #[cfg(test)]
 mod two_squares;
 
-use crate::Capacity;
 use embedded_graphics_core::pixelcolor::BinaryColor;
 use heapless::Vec;
 
@@ -47,6 +46,7 @@ pub use transform::{ClipVertex, ProjectedVertex, ScreenVertex};
 
 use crate::bits::{bit, set_bit};
 use crate::mesh::{Mesh, Viewpoint};
+use crate::Capacity;
 // The engines check their buffers with it as `super::need`.
 pub(crate) use crate::error::need;
 use crate::{Error, Pattern, Viewport};

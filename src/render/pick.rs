@@ -3,7 +3,6 @@
 //! pixel, hidden ones included, each with the number of drawn faces in front of it
 //! there: the paper's use case of choosing a hidden line on a part behind another.
 
-use crate::Capacity;
 use fixed::types::extra::LeEqU32;
 use heapless::Vec;
 
@@ -18,6 +17,7 @@ use crate::render::depth::coverage::{covers, covers_centre};
 use crate::render::depth::fan::FaceView;
 use crate::render::depth::fan::{fan_depth_at, takes_fan_depth};
 use crate::render::depth::plane::DepthPlane;
+use crate::Capacity;
 use crate::{Error, Viewport};
 
 /// A feature edge drawn through the picked pixel.

@@ -7,10 +7,10 @@
 //! `i64` and is stored as `i32` after a right shift by 29: one world unit along a
 //! clip axis is `2^sigma`, `sigma = k + m - 29`.
 
-use crate::Capacity;
 use heapless::Vec;
 
 use crate::camera::Camera;
+use crate::Capacity;
 use crate::{Error, GUARD_BAND_PX};
 
 /// A vertex in clip coordinates (fixed point, `2^sigma` per unit): `x` and `y` are

@@ -4,7 +4,6 @@
 //! sorted by first row, an active edge list of indices into it, and a 32-bit DDA per
 //! edge. Beyond the guard band each clipped edge is evaluated exactly per row.
 
-use crate::Capacity;
 use fixed::types::extra::LeEqU32;
 use heapless::Vec;
 
@@ -12,6 +11,7 @@ use crate::geometry::Subpixel;
 use crate::scan::edge::{Clipped, Edge, EdgeLine, EdgeTable};
 use crate::scan::RowRange;
 use crate::sort::sort_by_key;
+use crate::Capacity;
 use crate::{Error, ScreenPoint, Viewport};
 
 /// One edge crossing on a row: pixels from `x` on lie right of it.

@@ -2,11 +2,11 @@
 //! before it, else a fragment is moved ahead (a shuffle, marked) or a cycle is cut
 //! by a split; the list's order (farthest depth first) and its insertions.
 
-use crate::Capacity;
 use core::cmp::Reverse;
 
 use super::sort::{Sorter, DEAD};
 use crate::order::plane::Plane;
+use crate::Capacity;
 use crate::Error;
 
 /// An f32 as a u32 of the same order (finite values).

@@ -4,7 +4,6 @@
 //! overlap cyclically or interpenetrate, and is kept to show that), or a depth
 //! order made elsewhere (a BSP tree walked for the view, Newell's sort).
 
-use crate::Capacity;
 use core::marker::PhantomData;
 use core::ops::Range;
 
@@ -22,6 +21,7 @@ use crate::render::depth::coverage::{covers_centre, fragments_may_overlap};
 use crate::render::idpass::{render_ids, FrameInput, IdPass, IdWorkspace};
 use crate::render::transform::{ProjectedVertex, ScreenVertex};
 use crate::render::{bit, index_polygon, need, FrameCtx, Settings, Stats};
+use crate::Capacity;
 use crate::{Error, FillRule, ScanConverter, ScreenPoint, Span, SpanSink, Viewport};
 
 /// The list a [`PainterRenderer`] paints.

@@ -20,7 +20,6 @@
 //! paths its codes depend on the path (a surface's depth rank there), so one code per
 //! face cannot be added across segments; it is not drawn here.
 
-use crate::Capacity;
 use core::marker::PhantomData;
 
 use embedded_graphics_core::pixelcolor::{BinaryColor, PixelColor};
@@ -37,6 +36,7 @@ use crate::render::compose::{Flat, FrameProbe, Palette};
 use crate::render::idpass::{render_ids, FrameInput, IdPass, IdWorkspace};
 use crate::render::transform::{ProjectedVertex, ScreenVertex};
 use crate::render::{bit, face_polygon, need, FrameCtx, Settings, Stats};
+use crate::Capacity;
 use crate::{Error, FillRule, ScanConverter, ScreenPoint, Span, SpanSink, Viewport};
 
 /// Which path of the occlusion graph each pixel lies on: the paper's screen

@@ -10,10 +10,10 @@ mod row;
 
 pub use row::{prefix_xor, CodeRow};
 
-use crate::Capacity;
 use fixed::types::extra::LeEqU32;
 
 use super::{PolygonWalker, RowRuns};
+use crate::Capacity;
 use crate::{Error, ScreenPoint, SpanSink};
 
 /// An even-odd polygon filler that uses a modulo-2 code row instead of sorted

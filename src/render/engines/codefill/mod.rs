@@ -19,7 +19,6 @@ mod resolve;
 mod row;
 mod sliced;
 
-use crate::Capacity;
 use core::marker::PhantomData;
 
 use embedded_graphics_core::pixelcolor::PixelColor;
@@ -36,6 +35,7 @@ use crate::render::depth::plane::RowPlane;
 use crate::render::idpass::{render_ids, FrameInput, IdPass, IdWorkspace};
 use crate::render::transform::{ProjectedVertex, ScreenVertex};
 use crate::render::{bit, index_polygon, need, FrameCtx, Settings, Stats};
+use crate::Capacity;
 use crate::{Error, SpanSink};
 use active::{ActiveEdge, ActiveEdges};
 

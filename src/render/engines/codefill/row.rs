@@ -1,7 +1,6 @@
 //! The row scan of the code-fill engine: faces activated at their first row, the
 //! crossings of the row taken in order, each toggling its face in the surface code.
 
-use crate::Capacity;
 use heapless::Vec;
 
 use fixed::types::extra::LeEqU32;
@@ -17,6 +16,7 @@ use crate::render::transform::{ProjectedVertex, ScreenVertex};
 use crate::render::{index_polygon, FrameCtx};
 use crate::scan::edge::{Edge, EdgeLine};
 use crate::scan::RowRange;
+use crate::Capacity;
 use crate::Error;
 
 impl<

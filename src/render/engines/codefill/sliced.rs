@@ -7,13 +7,13 @@
 //! code is as wide as the faces active on the row. The buffer is cleared as it is
 //! read; the frame clears it once before its first row.
 
-use crate::Capacity;
 use fixed::types::extra::LeEqU32;
 
 use super::resolve::RowFaces;
 use super::{CodeFillRenderer, Surfaces};
 use crate::render::transform::ProjectedVertex;
 use crate::render::FrameCtx;
+use crate::Capacity;
 use crate::Error;
 
 impl<

@@ -3,10 +3,10 @@
 //! index, so that a facet drawn later never has a lower face index than one
 //! before it in the row: the tie rule then needs one compare a pixel.
 
-use crate::Capacity;
 use heapless::Vec;
 
 use super::facets::{CornerSource, Facet};
+use crate::Capacity;
 use crate::Error;
 
 /// Room for `N` active facets: their slots, the active ones' `face << 16 | slot`

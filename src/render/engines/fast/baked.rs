@@ -3,13 +3,13 @@
 //! list (two vertex and two face indices and the edge's kind). A frame then
 //! computes nothing that depends only on the mesh.
 
-use crate::Capacity;
 use core::fmt;
 
 use super::edge::{CompactEdge, MAX_HOLES, NO_HOLE};
 use super::holes::label_holes;
 use crate::error::need;
 use crate::mesh::{EdgeAdjacency, EdgeKind, Mesh};
+use crate::Capacity;
 use crate::{EdgeProblem, Error};
 
 /// The most faces and vertices the fast engine names: face ids are 16 bits

@@ -3,10 +3,10 @@
 //! A cut point is always computed from the edge's inside end, so two faces that
 //! share an edge get the very same point: shared edges stay watertight.
 
-use crate::Capacity;
 use heapless::Vec;
 
 use super::view::{EyePoint, FastVertex, ScreenMap, ScreenPoint};
+use crate::Capacity;
 use crate::Error;
 
 /// Most corners of a clipped polygon: a face of up to `CLIP_CORNERS - 6` corners

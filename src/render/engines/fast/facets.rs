@@ -11,7 +11,6 @@
 //! one unsigned compare a pixel takes the nearer face, and within the tie the lower
 //! index.
 
-use crate::Capacity;
 use heapless::Vec;
 
 use super::clip::CLIP_CORNERS;
@@ -19,6 +18,7 @@ use super::depth_row::{cells, run};
 use super::planes::{det, plane, plane_through, steepest, tie};
 use super::step::{crossing, row_at, EdgeStep};
 use super::view::FastVertex;
+use crate::Capacity;
 use crate::Error;
 
 /// Most corners of a face the fast engine draws without clipping; more is

@@ -2,9 +2,9 @@
 //! `buckets`), then one row at a time: facets made active as the row reaches them
 //! fill the row, lines are tested against it, spans go out.
 
-use crate::Capacity;
 use fixed::types::extra::LeEqU32;
 
+use crate::Capacity;
 use crate::Pattern;
 
 use super::*;

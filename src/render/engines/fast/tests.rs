@@ -2,7 +2,6 @@
 //! small frame drawn exactly once per pixel.
 
 extern crate std;
-use crate::Capacity;
 use std::vec;
 use std::vec::Vec;
 
@@ -13,6 +12,7 @@ use fixed::types::extra::{U4, U7};
 use super::*;
 use crate::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
 use crate::render::{DrawMode, SolidPalette};
+use crate::Capacity;
 use crate::{packed_len, Dashes, FillSolid, PackedFramebuffer, Pattern, Projection};
 
 /// A unit square in the z = 0 plane as two triangles sharing the diagonal 0-2.

@@ -41,7 +41,6 @@ mod bvh;
 mod tests;
 mod trace;
 
-use crate::Capacity;
 use core::marker::PhantomData;
 
 use embedded_graphics_core::pixelcolor::PixelColor;
@@ -58,6 +57,7 @@ use crate::render::depth::plane::{DepthPlane, RowPlane};
 use crate::render::idpass::{render_ids, FrameInput, IdPass, IdWorkspace};
 use crate::render::transform::{ProjectedVertex, ScreenVertex};
 use crate::render::{bit, face_polygon, need, FrameCtx, Settings, Stats};
+use crate::Capacity;
 use crate::{Error, SpanSink};
 use bvh::centre_box;
 

@@ -2,7 +2,6 @@
 //! Z-buffer's frame on a scene deep enough for a many-level hierarchy.
 
 extern crate std;
-use crate::Capacity;
 use std::string::String;
 use std::vec;
 use std::vec::Vec;
@@ -13,6 +12,7 @@ use super::trace::{fold, Candidates, Hit};
 use super::*;
 use crate::mesh::{HalfEdgeRecord, MeshEdge};
 use crate::render::{Cull, DrawMode, MonoPalette, Workspace, ZBufferRenderer};
+use crate::Capacity;
 use crate::{Dashes, Pattern, Projection, Span, Viewport};
 use embedded_graphics_core::pixelcolor::BinaryColor;
 

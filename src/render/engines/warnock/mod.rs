@@ -48,7 +48,6 @@ mod geom;
 #[cfg(test)]
 mod tests;
 
-use crate::Capacity;
 use core::marker::PhantomData;
 
 use embedded_graphics_core::pixelcolor::PixelColor;
@@ -66,6 +65,7 @@ use crate::render::depth::plane::DepthPlane;
 use crate::render::idpass::{render_ids, FrameInput, IdPass, IdWorkspace};
 use crate::render::transform::{ProjectedVertex, ScreenVertex};
 use crate::render::{bit, face_polygon, need, FrameCtx, Settings, Stats};
+use crate::Capacity;
 use crate::{Error, SpanSink};
 use area::Areas;
 use geom::{convex_orientation, PixelBox, Rect};

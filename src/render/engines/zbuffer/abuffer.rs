@@ -18,7 +18,6 @@
 //! bounding boxes, up to 512 per band and 128 per row; a longer diagonal sliver or a
 //! sharp tip is still missed where no centre near it is covered.
 
-use crate::Capacity;
 use embedded_graphics_core::pixelcolor::{Gray8, GrayColor, PixelColor};
 use heapless::Vec;
 
@@ -28,6 +27,7 @@ use crate::render::depth::plane::DepthPlane;
 use crate::render::lines::Band;
 use crate::render::transform::{ProjectedVertex, ScreenVertex};
 use crate::render::{bit, face_polygon, DrawMode, FrameCtx};
+use crate::Capacity;
 use crate::{Error, Span, SpanSink};
 
 /// The fewest sub-pixel bits for which the sub-samples, at odd eighths of a pixel,
