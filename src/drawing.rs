@@ -4,8 +4,9 @@
 //! their kinds, hole labels) and keeps every buffer the engine needs that grows
 //! with the mesh; [`FrameRows`] keeps those that grow with the display. Both are
 //! sized by const generics, zero-initialised by a `const fn new`, and can live in
-//! `static`s. Too small a size is [`Error::CapacityExceeded`] with the size
-//! needed, never a truncated picture.
+//! `static`s. Too small a size is [`Error::CapacityExceeded`] naming the parameter
+//! ([`Capacity`]) and the size needed, never a truncated picture;
+//! [`Drawing::measure`] tells every size a mesh and its views need at once.
 //!
 //! What the short form costs against the long one ([`FastRenderer`] with a
 //! [`FastWorkspace`] sized by hand and the constants baked on the host):
@@ -26,10 +27,11 @@ use embedded_graphics_core::pixelcolor::BinaryColor;
 use crate::error::need;
 use crate::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
 use crate::render::{
-    BakedMesh, CompactEdge, FacePlane, FastRenderer, FastVertex, FastWorkspace, MonoPalette,
-    Settings, Stats,
+    BakedMesh, CompactEdge, FacePlane, FastRenderer, FastVertex, FastWorkspace, FrameNeeds,
+    MonoPalette, Settings, Stats,
 };
 use crate::subpixel::U4;
+use crate::Capacity;
 use crate::{Camera, Error, FillSolid, SpanSink, Viewport};
 
 /// `Default` is `new()` for a drawing of any sizes.
@@ -69,7 +71,9 @@ pub const CLIPPED_CORNERS: usize = 64;
 /// let mesh = Mesh::new(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
 ///     &[0, 1, 2, 3], &[0, 4])?;
 /// let mut square = Drawing::<4, 1, 3>::new();
-/// assert_eq!(square.bake(mesh), Err(Error::CapacityExceeded { needed: 4, capacity: 3 }));
+/// let short = Error::CapacityExceeded { what: Capacity::Edges, needed: 4, capacity: 3 };
+/// assert_eq!(square.bake(mesh), Err(short));
+/// assert_eq!(short.to_string(), "mesh edges (E): 4 needed, capacity 3");
 /// # Ok::<(), Error>(())
 /// ```
 #[derive(Debug)]
@@ -140,9 +144,9 @@ impl<
     /// nothing stays baked.
     pub fn bake(&mut self, mesh: Mesh<'m>) -> Result<(), Error> {
         self.baked = None;
-        need(mesh.vertices().len(), V)?;
-        need(mesh.face_count(), F)?;
-        need(mesh.indices().len().div_ceil(2), E)?;
+        need(Capacity::Vertices, mesh.vertices().len(), V)?;
+        need(Capacity::Faces, mesh.face_count(), F)?;
+        need(Capacity::Edges, mesh.indices().len().div_ceil(2), E)?;
         let adjacency = EdgeAdjacency::build(
             &mesh,
             CREASE_DEG,
@@ -160,22 +164,53 @@ impl<
 
     /// Draws the baked mesh seen by `camera` into `target`, whose bounding box is
     /// the frame (at most `W` x `H` of `rows`), one span at a time
-    /// ([`DrawTarget::fill_solid`]). Nothing baked is `Err(NothingBaked)`.
+    /// ([`DrawTarget::fill_solid`]). Nothing baked is `Err(NothingBaked)`. More
+    /// facets or lines active on a row than `FACETS` or `LINES`, or more clipped
+    /// corners than [`CLIPPED_CORNERS`], is `CapacityExceeded` with the frame's
+    /// true need (its peak, counted on past the limit), and no frame.
     pub fn draw<D: DrawTarget<Color = BinaryColor>, const W: usize, const H: usize>(
         &mut self,
         camera: &Camera,
         rows: &mut FrameRows<W, H>,
         target: &mut D,
     ) -> Result<Stats, Error<D::Error>> {
-        let Some(baked) = self.baked else {
-            return Err(Error::NothingBaked);
-        };
-        let planes = self.planes.get(..baked.mesh.face_count()).unwrap_or(&[]);
-        let edges = self.edges.get(..baked.edges).unwrap_or(&[]);
-        let mesh = BakedMesh::baked_here(baked.mesh, planes, edges);
+        let mesh = baked_mesh(self.baked, &self.planes, &self.edges).map_err(Error::widen)?;
         self.frame
             .draw(&mesh, camera, (&self.settings, &self.palette), rows, target)
     }
+
+    /// Every size the baked mesh seen by each of `cameras` in frames of
+    /// `viewport` needs: the `V`, `F`, `E`, `FACETS`, `LINES` of a `Drawing` and
+    /// the `W`, `H` of its [`FrameRows`], and the clipped corners (at most
+    /// [`CLIPPED_CORNERS`] fit). Nothing is drawn, and this drawing's own
+    /// `FACETS` and `LINES` may be smaller than what it reports, so a large
+    /// drawing on the host can size a small one for the device. `rows` must hold
+    /// `viewport` (`CapacityExceeded` else); nothing baked is `Err(NothingBaked)`.
+    pub fn measure<const W: usize, const H: usize>(
+        &mut self,
+        cameras: &[Camera],
+        rows: &mut FrameRows<W, H>,
+        viewport: Viewport,
+    ) -> Result<DrawingNeeds, Error> {
+        let mesh = baked_mesh(self.baked, &self.planes, &self.edges)?;
+        self.frame
+            .measure(&mesh, cameras, &self.settings, rows, viewport)
+    }
+}
+
+/// A [`Drawing`]'s baked mesh: what [`Drawing::bake`] learnt, with its planes and
+/// edges (a free function, so the drawing's frame buffers stay free to borrow).
+fn baked_mesh<'a>(
+    baked: Option<Baked<'a>>,
+    planes: &'a [FacePlane],
+    edges: &'a [CompactEdge],
+) -> Result<BakedMesh<'a>, Error> {
+    let Some(baked) = baked else {
+        return Err(Error::NothingBaked);
+    };
+    let planes = planes.get(..baked.mesh.face_count()).unwrap_or(&[]);
+    let edges = edges.get(..baked.edges).unwrap_or(&[]);
+    Ok(BakedMesh::baked_here(baked.mesh, planes, edges))
 }
 
 /// A mesh baked on the host and kept in flash (a [`BakedMesh`], as the `static`s of
@@ -259,9 +294,9 @@ impl<
     /// is kept.
     pub fn set_mesh(&mut self, mesh: BakedMesh<'m>) -> Result<(), Error> {
         self.mesh = None;
-        need(mesh.mesh().vertices().len(), V)?;
-        need(mesh.mesh().face_count(), F)?;
-        need(mesh.edges().len(), E)?;
+        need(Capacity::Vertices, mesh.mesh().vertices().len(), V)?;
+        need(Capacity::Faces, mesh.mesh().face_count(), F)?;
+        need(Capacity::Edges, mesh.edges().len(), E)?;
         self.mesh = Some(mesh);
         Ok(())
     }
@@ -279,6 +314,21 @@ impl<
         };
         self.frame
             .draw(&mesh, camera, (&self.settings, &self.palette), rows, target)
+    }
+
+    /// Every size the mesh seen by each of `cameras` in frames of `viewport` needs,
+    /// as [`Drawing::measure`] reports it. No mesh is `Err(NothingBaked)`.
+    pub fn measure<const W: usize, const H: usize>(
+        &mut self,
+        cameras: &[Camera],
+        rows: &mut FrameRows<W, H>,
+        viewport: Viewport,
+    ) -> Result<DrawingNeeds, Error> {
+        let Some(mesh) = self.mesh else {
+            return Err(Error::NothingBaked);
+        };
+        self.frame
+            .measure(&mesh, cameras, &self.settings, rows, viewport)
     }
 }
 
@@ -337,13 +387,56 @@ impl<const V: usize, const F: usize, const E: usize, const FACETS: usize, const 
         target: &mut D,
     ) -> Result<Stats, Error<D::Error>> {
         let mut sink = FillSolid::new(target).map_err(Error::widen)?;
-        rows.fit(sink.viewport()).map_err(Error::widen)?;
+        let (mut ws, engine) = self
+            .workspace(rows, sink.viewport())
+            .map_err(Error::widen)?;
+        engine.render(mesh, camera, settings, &mut ws, palette, &mut sink, &mut ())
+    }
+
+    /// What `mesh` seen by each of `cameras` in frames of `viewport` needs: the
+    /// peaks counted by the engine without drawing, and the mesh's and display's
+    /// sizes.
+    fn measure<const W: usize, const H: usize>(
+        &mut self,
+        mesh: &BakedMesh<'_>,
+        cameras: &[Camera],
+        settings: &Settings,
+        rows: &mut FrameRows<W, H>,
+        viewport: Viewport,
+    ) -> Result<DrawingNeeds, Error> {
+        let (mut ws, engine) = self.workspace(rows, viewport)?;
+        let mut frames = FrameNeeds::default();
+        for camera in cameras {
+            let one = engine.needs(mesh, camera, settings, &mut ws, viewport)?;
+            frames = frames.max(one);
+        }
+        let inner = mesh.mesh();
+        let width = usize::from(viewport.width);
+        Ok(DrawingNeeds {
+            vertices: inner.vertices().len(),
+            faces: inner.face_count(),
+            edges: mesh.edges().len().max(inner.indices().len().div_ceil(2)),
+            facets: frames.facets,
+            lines: frames.lines,
+            clipped_corners: frames.clipped_corners,
+            width,
+            height: usize::from(viewport.height).max(2 * width.div_ceil(32)),
+        })
+    }
+
+    /// The engine and its workspace for a frame of `viewport` (`rows` must hold it).
+    fn workspace<'s, const W: usize, const H: usize>(
+        &'s mut self,
+        rows: &'s mut FrameRows<W, H>,
+        viewport: Viewport,
+    ) -> Result<(FastWorkspace<'s>, &'s mut FastRenderer<U4, FACETS, LINES>), Error> {
+        rows.fit(viewport)?;
         let (face_links, slopes) = self
             .face_lists
             .as_flattened_mut()
             .split_at_mut_checked(F)
             .unwrap_or_default();
-        let mut ws = FastWorkspace {
+        let ws = FastWorkspace {
             vertices: &mut self.vertices,
             facing: &mut self.facing,
             face_links,
@@ -356,9 +449,34 @@ impl<const V: usize, const F: usize, const E: usize, const FACETS: usize, const 
             slopes,
             phases: &mut [],
         };
-        self.engine
-            .render(mesh, camera, settings, &mut ws, palette, &mut sink, &mut ())
+        Ok((ws, &mut self.engine))
     }
+}
+
+/// What a baked mesh and its views need ([`Drawing::measure`]): the sizes to give
+/// a [`Drawing`] and its [`FrameRows`] that draw them, each the one its
+/// [`Capacity`] names when short.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
+pub struct DrawingNeeds {
+    /// `V`: the mesh's vertices ([`Capacity::Vertices`]).
+    pub vertices: usize,
+    /// `F`: the mesh's faces ([`Capacity::Faces`]).
+    pub faces: usize,
+    /// `E`: the larger of the unique edges and half the corners ([`Capacity::Edges`]).
+    pub edges: usize,
+    /// `FACETS`: the most facets active on a row in any view ([`Capacity::ActiveFacets`]).
+    pub facets: usize,
+    /// `LINES`: the most feature lines active on a row in any view
+    /// ([`Capacity::ActiveLines`]).
+    pub lines: usize,
+    /// Corners of clipped faces in the worst view ([`Capacity::ClippedCorners`]):
+    /// fixed at [`CLIPPED_CORNERS`] in a `Drawing`, the long form's pool otherwise.
+    pub clipped_corners: usize,
+    /// `W`: the frame's width ([`Capacity::RowWidth`]).
+    pub width: usize,
+    /// `H`: the frame's height, or the line masks' two words per 32 columns when
+    /// more ([`Capacity::Rows`], [`Capacity::LineMasks`]).
+    pub height: usize,
 }
 
 /// The buffers of a [`Drawing`] that grow with the display: room for frames up to
@@ -390,8 +508,43 @@ impl<const W: usize, const H: usize> FrameRows<W, H> {
     /// `W`, `H` and the line masks' `H` (two words per 32 columns) that is short.
     fn fit(&self, viewport: Viewport) -> Result<(), Error> {
         let width = usize::from(viewport.width);
-        need(width, W)?;
-        need(usize::from(viewport.height), H)?;
-        need(2 * width.div_ceil(32), H)
+        need(Capacity::RowWidth, width, W)?;
+        need(Capacity::Rows, usize::from(viewport.height), H)?;
+        need(Capacity::LineMasks, 2 * width.div_ceil(32), H)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A square: 4 vertices, 1 face, 4 edges (half its 4 corners: 2).
+    fn square() -> Mesh<'static> {
+        const V: [[f32; 3]; 4] = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ];
+        Mesh::new(&V, &[0, 1, 2, 3], &[0, 4]).unwrap()
+    }
+
+    fn short(what: Capacity, needed: usize, capacity: usize) -> Result<(), Error> {
+        Err(Error::CapacityExceeded {
+            what,
+            needed,
+            capacity,
+        })
+    }
+
+    #[test]
+    fn bake_names_the_parameter_that_is_short() {
+        let v = Drawing::<3, 1, 4>::new().bake(square());
+        assert_eq!(v, short(Capacity::Vertices, 4, 3));
+        let f = Drawing::<4, 0, 4>::new().bake(square());
+        assert_eq!(f, short(Capacity::Faces, 1, 0));
+        let e = Drawing::<4, 1, 3>::new().bake(square());
+        assert_eq!(e, short(Capacity::Edges, 4, 3));
+        assert_eq!(Drawing::<4, 1, 4>::new().bake(square()), Ok(()));
     }
 }

@@ -3,6 +3,10 @@
 use core::convert::Infallible;
 use core::fmt;
 
+mod capacity;
+
+pub use capacity::Capacity;
+
 /// The largest supported target side, in pixels ([`Error::ViewportTooLarge`] beyond).
 pub const MAX_VIEWPORT: u32 = 8192;
 
@@ -26,7 +30,10 @@ pub enum Error<T = Infallible> {
     },
     /// A fixed-capacity buffer is too small for this input.
     CapacityExceeded {
-        /// The capacity this input needs.
+        /// Which buffer: its doc says which stage uses it and what to grow.
+        what: Capacity,
+        /// The capacity this input needs (a lower bound where [`Capacity`]'s
+        /// variant says "at least").
         needed: usize,
         /// The compiled capacity.
         capacity: usize,
@@ -350,9 +357,15 @@ impl Error<Infallible> {
             Error::NonFinite => Error::NonFinite,
             Error::OutOfRange => Error::OutOfRange,
             Error::TooFewVertices { found } => Error::TooFewVertices { found },
-            Error::CapacityExceeded { needed, capacity } => {
-                Error::CapacityExceeded { needed, capacity }
-            }
+            Error::CapacityExceeded {
+                what,
+                needed,
+                capacity,
+            } => Error::CapacityExceeded {
+                what,
+                needed,
+                capacity,
+            },
             Error::ViewportTooLarge { width, height } => Error::ViewportTooLarge { width, height },
             Error::NonFiniteVertex { vertex } => Error::NonFiniteVertex { vertex },
             Error::IndexOutOfRange { face, index } => Error::IndexOutOfRange { face, index },
@@ -375,6 +388,10 @@ impl Error<Infallible> {
     }
 }
 
+/// So that `?` turns it into a `Box<dyn Error>` and error-reporting crates take it
+/// (`core::error::Error`: no `std` needed).
+impl<T: fmt::Debug> core::error::Error for Error<T> {}
+
 impl<T: fmt::Debug> fmt::Display for Error<T> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
@@ -383,9 +400,11 @@ impl<T: fmt::Debug> fmt::Display for Error<T> {
             Error::TooFewVertices { found } => {
                 write!(f, "polygon has {found} vertices, at least 3 are needed")
             }
-            Error::CapacityExceeded { needed, capacity } => {
-                write!(f, "capacity {capacity} exceeded: {needed} needed")
-            }
+            Error::CapacityExceeded {
+                what,
+                needed,
+                capacity,
+            } => write!(f, "{what}: {needed} needed, capacity {capacity}"),
             Error::ViewportTooLarge { width, height } => write!(
                 f,
                 "target of {width}x{height} pixels exceeds the {0}x{0} maximum",
@@ -442,11 +461,15 @@ impl<T: fmt::Debug> fmt::Display for Error<T> {
     }
 }
 
-/// `CapacityExceeded` when `needed` is more than `capacity`: the one check every
-/// fixed-size buffer makes.
-pub(crate) fn need(needed: usize, capacity: usize) -> Result<(), Error> {
+/// `CapacityExceeded` naming `what` when `needed` is more than `capacity`: the one
+/// check every fixed-size buffer makes.
+pub(crate) fn need(what: Capacity, needed: usize, capacity: usize) -> Result<(), Error> {
     if needed > capacity {
-        return Err(Error::CapacityExceeded { needed, capacity });
+        return Err(Error::CapacityExceeded {
+            what,
+            needed,
+            capacity,
+        });
     }
     Ok(())
 }

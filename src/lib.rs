@@ -108,8 +108,8 @@ mod vector;
 
 pub use camera::{Camera, Projection, FIT_FILL, FIT_FOV_DEG, FIT_VIEW_DIRECTION};
 pub use codes::SchemeViolation;
-pub use drawing::{BakedDrawing, Drawing, FrameRows, CLIPPED_CORNERS, CREASE_DEG};
-pub use error::{CameraProblem, EdgeProblem, Error};
+pub use drawing::{BakedDrawing, Drawing, DrawingNeeds, FrameRows, CLIPPED_CORNERS, CREASE_DEG};
+pub use error::{CameraProblem, Capacity, EdgeProblem, Error};
 pub use framebuffer::{packed_len, write_mask, PackedFramebuffer};
 pub use geometry::{ScreenPoint, Viewport, GUARD_BAND_PX, MAX_SUBPIXEL_BITS, MAX_VIEWPORT};
 pub use mesh::{
@@ -159,5 +159,5 @@ pub mod conventions {}
 
 /// The names one frame needs: `use pbuffer::prelude::*;`.
 pub mod prelude {
-    pub use crate::{Camera, DrawMode, Drawing, Error, FrameRows, Mesh, Settings};
+    pub use crate::{Camera, Capacity, DrawMode, Drawing, Error, FrameRows, Mesh, Settings};
 }

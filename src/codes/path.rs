@@ -5,6 +5,7 @@ use super::table::combination_rows;
 use super::{
     bit_length, independent, Basis, ColourTable, ExtendedHamming, OcclusionGraph, SchemeViolation,
 };
+use crate::Capacity;
 use crate::Error;
 
 /// Scheme 2 of the paper: each surface has a short data code, encoded by an extended
@@ -160,6 +161,7 @@ pub fn coset_path_codes<const W: usize>(
     let cosets = 1usize.checked_shl(free.count_ones()).unwrap_or(usize::MAX);
     if path_codes.len() > cosets {
         return Err(Error::CapacityExceeded {
+            what: Capacity::PathCodes,
             needed: path_codes.len(),
             capacity: cosets,
         });

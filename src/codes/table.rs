@@ -1,6 +1,7 @@
 //! The colour table: from the code at a pixel to the surface visible there.
 
 use super::{OcclusionGraph, SchemeViolation};
+use crate::Capacity;
 use crate::Error;
 
 /// What a pixel shows.
@@ -85,6 +86,7 @@ impl<const E: usize> ColourTable<E> {
     pub(crate) fn reserve(needed: usize) -> Result<Self, Error> {
         if needed > E {
             return Err(Error::CapacityExceeded {
+                what: Capacity::ColourTableRows,
                 needed,
                 capacity: E,
             });
@@ -114,6 +116,7 @@ impl<const E: usize> ColourTable<E> {
             .entries
             .get_mut(self.len)
             .ok_or(Error::CapacityExceeded {
+                what: Capacity::ColourTableRows,
                 needed: self.len + 1,
                 capacity: E,
             })?;

@@ -9,6 +9,7 @@
 use super::features::{classify, cos_degrees};
 use super::{EdgeKind, Mesh, MeshEdge};
 use crate::sort::sort_by_key;
+use crate::Capacity;
 use crate::{EdgeProblem, Error};
 
 /// Scratch record for building adjacency: one use of an edge by a face. The
@@ -89,8 +90,8 @@ impl<'s> EdgeAdjacency<'s> {
         if !crease_deg.is_finite() {
             return Err(Error::NonFinite);
         }
-        let weld = lend(weld, mesh.vertices().len())?;
-        let scratch = lend(scratch, mesh.indices().len())?;
+        let weld = lend(Capacity::Vertices, weld, mesh.vertices().len())?;
+        let scratch = lend(Capacity::HalfEdges, scratch, mesh.indices().len())?;
         sort_by_position(mesh, weld);
         let records = half_edges(mesh, weld, scratch);
         sort_by_key(records, |r| (r.lo, r.hi, r.face));
@@ -136,6 +137,7 @@ impl<'s> EdgeAdjacency<'s> {
         }
         if count > capacity {
             return Err(Error::CapacityExceeded {
+                what: Capacity::Edges,
                 needed: count,
                 capacity,
             });
@@ -201,11 +203,13 @@ impl<'s> EdgeAdjacency<'s> {
 }
 
 /// The first `needed` items of a lent buffer, or the error naming its shortfall.
-fn lend<T>(buffer: &mut [T], needed: usize) -> Result<&mut [T], Error> {
+fn lend<T>(what: Capacity, buffer: &mut [T], needed: usize) -> Result<&mut [T], Error> {
     let capacity = buffer.len();
-    buffer
-        .get_mut(..needed)
-        .ok_or(Error::CapacityExceeded { needed, capacity })
+    buffer.get_mut(..needed).ok_or(Error::CapacityExceeded {
+        what,
+        needed,
+        capacity,
+    })
 }
 
 /// Fills `weld` with the vertex ids sorted by coordinate bits, then by id, so

@@ -16,6 +16,7 @@ pub use adjacency::{EdgeAdjacency, HalfEdgeRecord};
 pub use features::{face_owns_edge, EdgeKind, MeshEdge};
 
 use crate::bits::bit;
+use crate::Capacity;
 use crate::Error;
 
 /// Most faces a mesh may have: face ids are 16-bit in the renderer's id buffers.
@@ -135,6 +136,7 @@ impl<'a> Mesh<'a> {
         let needed = planar_words(self.face_count());
         if bits.len() < needed {
             return Err(Error::CapacityExceeded {
+                what: Capacity::FaceBits,
                 needed,
                 capacity: bits.len(),
             });

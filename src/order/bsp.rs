@@ -5,6 +5,7 @@ use core::ops::Range;
 use crate::error::need;
 use crate::mesh::{Mesh, Viewpoint};
 use crate::vector::dot;
+use crate::Capacity;
 use crate::Error;
 
 /// "No child" in [`BspNode::front`] and [`BspNode::back`].
@@ -336,8 +337,9 @@ impl<'s> BspTree<'s> {
         stack: &mut [u32],
         mut visit: impl FnMut(usize),
     ) -> Result<(), Error> {
-        need(self.depth, stack.len())?;
+        need(Capacity::BspStack, self.depth, stack.len())?;
         let overflow = Error::CapacityExceeded {
+            what: Capacity::BspStack,
             needed: self.depth,
             capacity: stack.len(),
         };
@@ -383,8 +385,8 @@ impl<'s> BspTree<'s> {
         stack: &mut [u32],
         rank: &mut [u32],
     ) -> Result<(), Error> {
-        need(self.depth, stack.len())?;
-        need(self.fragment_count(), rank.len())?;
+        need(Capacity::BspStack, self.depth, stack.len())?;
+        need(Capacity::FragmentRanks, self.fragment_count(), rank.len())?;
         let mut next = 0u32;
         self.visit_front_to_back(view, stack, |fragment| {
             if let Some(r) = rank.get_mut(fragment) {

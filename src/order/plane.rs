@@ -3,6 +3,7 @@
 use crate::bits::set_bit;
 use crate::mesh::{planar_words, Mesh};
 use crate::vector::{add, cross, dot, sub};
+use crate::Capacity;
 use crate::Error;
 
 /// Where a vertex lies relative to a plane, with the build's tolerance.
@@ -314,6 +315,7 @@ pub fn planar_faces(mesh: &Mesh<'_>, bits: &mut [u32]) -> Result<usize, Error> {
     let needed = planar_words(mesh.face_count());
     let Some(words) = bits.get_mut(..needed) else {
         return Err(Error::CapacityExceeded {
+            what: Capacity::FaceBits,
             needed,
             capacity: bits.len(),
         });

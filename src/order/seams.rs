@@ -15,6 +15,7 @@
 use super::plane::vertex;
 use crate::error::need;
 use crate::sort::sort_by_key;
+use crate::Capacity;
 use crate::Error;
 
 /// The split points' root segments and the vertices they index.
@@ -177,6 +178,7 @@ pub(super) fn insert_seam_vertices(
     let splits = seams.vertices.len().saturating_sub(seams.base);
     let capacity = work.len();
     let sorted = work.get_mut(..splits).ok_or(Error::CapacityExceeded {
+        what: Capacity::OrderWork,
         needed: splits,
         capacity,
     })?;
@@ -191,6 +193,7 @@ pub(super) fn insert_seam_vertices(
     seams.sort(sorted);
     let sorted: &[u32] = sorted;
     let broken = Error::CapacityExceeded {
+        what: Capacity::FragmentIndices,
         needed: index_count,
         capacity: indices.len(),
     };
@@ -215,8 +218,9 @@ pub(super) fn insert_seam_vertices(
         added = added.saturating_add(extra(indices.get(s..e).ok_or(broken)?));
     }
     let total = index_count.saturating_add(added);
-    need(total, indices.len())?;
+    need(Capacity::FragmentIndices, total, indices.len())?;
     u32::try_from(total).map_err(|_| Error::CapacityExceeded {
+        what: Capacity::Index32,
         needed: total,
         capacity: u32::MAX as usize,
     })?;

@@ -34,10 +34,10 @@ pub use compose::{FrameProbe, MonoPalette, Palette, SolidPalette};
 pub use engines::{
     BakedMesh, BakedSource, BvhNode, CodeFill, CodeFillRenderer, CodeWorkspace, CompactEdge,
     DashPhase, Depth, DepthOrder, FacePlane, Fast, FastRenderer, FastVertex, FastWorkspace,
-    GreyPalette, GreyShades, OneSegment, PaintOrder, Painter, PainterRenderer, RayFace, Raycast,
-    RaycastFigures, RaycastRenderer, RaycastSizes, RaycastStorage, RowCodes, Scheme, SchemeCoding,
-    SchemeRenderer, ScreenSegments, SmallFace, Visibility, Warnock, WarnockArea, WarnockFace,
-    WarnockRenderer, WarnockSizes, WarnockStorage, ZBuffer, ZBufferRenderer,
+    FrameNeeds, GreyPalette, GreyShades, OneSegment, PaintOrder, Painter, PainterRenderer, RayFace,
+    Raycast, RaycastFigures, RaycastRenderer, RaycastSizes, RaycastStorage, RowCodes, Scheme,
+    SchemeCoding, SchemeRenderer, ScreenSegments, SmallFace, Visibility, Warnock, WarnockArea,
+    WarnockFace, WarnockRenderer, WarnockSizes, WarnockStorage, ZBuffer, ZBufferRenderer,
     FAST_MAX_SUBPIXEL_BITS, MAX_CHECKED_FACES, MAX_CORNERS, MAX_FAST_FACES, MAX_HOLES, NO_HOLE,
 };
 pub use idpass::IdWorkspace;
@@ -46,6 +46,7 @@ pub use transform::{ClipVertex, ProjectedVertex, ScreenVertex};
 
 use crate::bits::{bit, set_bit};
 use crate::mesh::{Mesh, Viewpoint};
+use crate::Capacity;
 // The engines check their buffers with it as `super::need`.
 pub(crate) use crate::error::need;
 use crate::{Error, Pattern, Viewport};
@@ -190,22 +191,34 @@ pub struct Stats {
     pub feature_edges: u32,
     /// Spans: face spans depth-tested plus spans sent to the sink.
     pub spans: u32,
-    /// Bands rendered.
+    /// Bands rendered (the fast engine: one a row, so the frame's height).
     pub bands: u32,
-    /// Rows per band.
+    /// Rows per band (the fast engine: 1).
     pub band_rows: u32,
-    /// Bytes of depth samples per band (0 for the code-fill engine).
+    /// Bytes of depth samples: the Z-buffer engine's per band, the fast engine's
+    /// row (4 a pixel); 0 for the engines without a depth buffer.
     pub depth_buffer_bytes: u32,
     /// Code-fill engine: bits of the widest surface code a row needed (the most
-    /// faces covering one pixel). Schemes engine: the scheme's code width.
+    /// faces covering one pixel). Schemes engine: the scheme's code width. 0 for
+    /// the others.
     pub code_bits: u32,
-    /// Code-fill engine: the most faces active on one row.
+    /// The most faces active on one row, which is what the engine's active-face
+    /// table must hold. Fast engine ([`FastRenderer`], [`Drawing`](crate::Drawing)):
+    /// the peak of active *facets* (a face, or a bent face's fan triangle), the
+    /// `FACETS` that draws this frame ([`Capacity::ActiveFacets`]).
+    /// Code-fill engine: the peak of active faces, its `FACES`
+    /// ([`Capacity::ActiveFaces`]). 0 for the others.
     pub peak_faces: u32,
-    /// Code-fill engine: the most edges active on one row.
+    /// The most edges active on one row. Fast engine: the peak of active feature
+    /// *lines*, the `LINES` that draws this frame
+    /// ([`Capacity::ActiveLines`]). Code-fill engine:
+    /// the peak of active polygon edges, its `EDGES`
+    /// ([`Capacity::ActiveEdges`]). 0 for the others.
     pub peak_edges: u32,
     /// The world distance one step of the stored depth stands for at the nearest
     /// drawn distance (depth is scaled to the distances the frame draws, not to
-    /// near and far): surfaces closer together than this there may tie.
+    /// near and far): surfaces closer together than this there may tie. Filled by
+    /// the fast and Z-buffer engines, 0 for the others.
     pub depth_step_near: f32,
     /// The same at the farthest drawn distance (larger under perspective).
     pub depth_step_far: f32,
@@ -249,8 +262,12 @@ fn band_rows(viewport: Viewport, samples: usize, line_words: usize) -> Result<u1
     }
     .min((line_words / (2 * row_words).max(1)).min(usize::from(height)) as u16);
     if height > 0 && rows == 0 {
-        need(usize::from(IdBand::rows_needed(1, height)) * w, samples)?;
-        need(2 * row_words, line_words)?;
+        need(
+            Capacity::BandSamples,
+            usize::from(IdBand::rows_needed(1, height)) * w,
+            samples,
+        )?;
+        need(Capacity::BandLineWords, 2 * row_words, line_words)?;
     }
     Ok(rows)
 }
@@ -277,9 +294,17 @@ fn begin_frame<'f, 'm>(
         s,
     } = *input;
     let faces = mesh.face_count();
-    need(positions.len().max(mesh.vertices().len()), vertices.len())?;
-    need(faces.div_ceil(32), drawn.len())?;
-    need(edges.edges().len().div_ceil(32), features.len())?;
+    need(
+        Capacity::Vertices,
+        positions.len().max(mesh.vertices().len()),
+        vertices.len(),
+    )?;
+    need(Capacity::FaceBits, faces.div_ceil(32), drawn.len())?;
+    need(
+        Capacity::EdgeBits,
+        edges.edges().len().div_ceil(32),
+        features.len(),
+    )?;
     let max_abs = positions
         .iter()
         .flatten()
@@ -360,7 +385,7 @@ fn index_polygon<const POLY: usize>(
         return Ok(false);
     }
     if any == 0 {
-        need(idx.len(), POLY)?;
+        need(Capacity::FaceCorners, idx.len(), POLY)?;
         for &v in idx {
             if let Some(p) = vertices.get(v as usize) {
                 let _ = out.push(p.screen());
@@ -369,7 +394,7 @@ fn index_polygon<const POLY: usize>(
         return Ok(true);
     }
     let mut clip: Vec<ClipVertex, POLY> = Vec::new();
-    need(idx.len(), POLY)?;
+    need(Capacity::FaceCorners, idx.len(), POLY)?;
     for &v in idx {
         if let Some(c) = ctx.clip_of(vertices, v) {
             let _ = clip.push(c);

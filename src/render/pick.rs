@@ -17,6 +17,7 @@ use crate::render::depth::coverage::{covers, covers_centre};
 use crate::render::depth::fan::FaceView;
 use crate::render::depth::fan::{fan_depth_at, takes_fan_depth};
 use crate::render::depth::plane::DepthPlane;
+use crate::Capacity;
 use crate::{Error, Viewport};
 
 /// A feature edge drawn through the picked pixel.
@@ -168,7 +169,7 @@ pub fn pick<Frac: LeEqU32, const POLY: usize>(
         }
         found += 1;
     }
-    need(found, edges.len())?;
+    need(Capacity::PickedEdges, found, edges.len())?;
     if let Some(list) = edges.get_mut(..found) {
         crate::sort::sort_by_key(list, |p| (p.faces_in_front, u32::MAX - p.nearness, p.edge));
     }

@@ -400,6 +400,7 @@ fn bit_sliced_rows_ignore_what_the_buffer_held_and_leave_it_clear() {
     assert_eq!(
         code_fill_rows::<1, 64>(&mesh, codes, Visibility::Order(order), &mut ()),
         Err(Error::CapacityExceeded {
+            what: Capacity::RowCodes,
             needed: len,
             capacity: len - 1
         })
@@ -501,7 +502,11 @@ fn too_many_active_edges_is_an_error_not_a_truncated_frame() {
     // Each square's four edges join the active edges when it starts (none is quite
     // horizontal in this view): up to 160.
     match code_fill::<2, 64>(&mesh) {
-        Err(Error::CapacityExceeded { needed, capacity }) => {
+        Err(Error::CapacityExceeded {
+            what: Capacity::ActiveEdges,
+            needed,
+            capacity,
+        }) => {
             assert_eq!(capacity, 64);
             assert!(needed > 64, "needed {needed}");
         }

@@ -10,6 +10,7 @@
 use heapless::Vec;
 
 use crate::camera::Camera;
+use crate::Capacity;
 use crate::{Error, GUARD_BAND_PX};
 
 /// A vertex in clip coordinates (fixed point, `2^sigma` per unit): `x` and `y` are
@@ -428,6 +429,7 @@ impl FixedView {
             }
             if needed > N {
                 return Err(Error::CapacityExceeded {
+                    what: Capacity::ClippedFaceCorners,
                     needed,
                     capacity: N,
                 });

@@ -11,6 +11,7 @@ use crate::geometry::Subpixel;
 use crate::scan::edge::{Clipped, Edge, EdgeLine, EdgeTable};
 use crate::scan::RowRange;
 use crate::sort::sort_by_key;
+use crate::Capacity;
 use crate::{Error, ScreenPoint, Viewport};
 
 /// One edge crossing on a row: pixels from `x` on lie right of it.
@@ -248,7 +249,11 @@ impl<const N: usize> PolygonWalker<N> {
 /// `Err(CapacityExceeded)` when `needed` edges do not fit `capacity`.
 fn check_capacity(needed: usize, capacity: usize) -> Result<(), Error> {
     if needed > capacity {
-        return Err(Error::CapacityExceeded { needed, capacity });
+        return Err(Error::CapacityExceeded {
+            what: Capacity::ActiveEdges,
+            needed,
+            capacity,
+        });
     }
     Ok(())
 }

@@ -427,8 +427,12 @@ fn refusal_text(r: &Refusal) -> String {
         Refusal::Library(Error::CodeTooWide { needed, capacity }) => {
             format!("CodeTooWide (needs {needed} bits, has {capacity})")
         }
-        Refusal::Library(Error::CapacityExceeded { needed, capacity }) => {
-            format!("CapacityExceeded ({needed} > {capacity})")
+        Refusal::Library(Error::CapacityExceeded {
+            what,
+            needed,
+            capacity,
+        }) => {
+            format!("CapacityExceeded ({what}: {needed} > {capacity})")
         }
         Refusal::Library(e) => format!("{e}"),
         Refusal::Setup(e) => e.clone(),

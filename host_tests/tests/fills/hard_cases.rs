@@ -9,8 +9,8 @@ use fixed::types::extra::{U0, U12, U4, U8};
 use host_tests::random::RawPolygon;
 use host_tests::reference::{Polygon, Rule};
 use pbuffer::{
-    packed_len, Error, FillRule, PackedFramebuffer, ScanConverter, ScreenPoint, XorFiller,
-    GUARD_BAND_PX,
+    packed_len, Capacity, Error, FillRule, PackedFramebuffer, ScanConverter, ScreenPoint,
+    XorFiller, GUARD_BAND_PX,
 };
 use support::{fill_raw, CountSink, Filler};
 
@@ -468,6 +468,7 @@ fn too_many_edges_is_a_capacity_error_with_the_needed_count_and_draws_nothing() 
     assert_eq!(
         e,
         Err(Error::CapacityExceeded {
+            what: Capacity::ActiveEdges,
             needed: 10,
             capacity: 4
         })
@@ -476,6 +477,7 @@ fn too_many_edges_is_a_capacity_error_with_the_needed_count_and_draws_nothing() 
     assert_eq!(
         e,
         Err(Error::CapacityExceeded {
+            what: Capacity::ActiveEdges,
             needed: 10,
             capacity: 9
         })
@@ -496,6 +498,7 @@ fn xor_row_buffer_narrower_than_the_viewport_is_a_capacity_error() {
     assert_eq!(
         e,
         Err(Error::CapacityExceeded {
+            what: Capacity::RowWords,
             needed: 2,
             capacity: 1
         })

@@ -139,10 +139,25 @@ fn a_drawing_starts_with_the_default_settings() {
 #[test]
 fn too_small_a_drawing_names_the_size_it_needs() {
     let mesh = Mesh::new(&CORNERS, &QUADS, &STARTS).unwrap();
-    let short = |needed, capacity| Err(Error::CapacityExceeded { needed, capacity });
-    assert_eq!(Drawing::<7, 6, 12>::new().bake(mesh), short(8, 7));
-    assert_eq!(Drawing::<8, 5, 12>::new().bake(mesh), short(6, 5));
-    assert_eq!(Drawing::<8, 6, 11>::new().bake(mesh), short(12, 11));
+    let short = |what, needed, capacity| {
+        Err(Error::CapacityExceeded {
+            what,
+            needed,
+            capacity,
+        })
+    };
+    assert_eq!(
+        Drawing::<7, 6, 12>::new().bake(mesh),
+        short(Capacity::Vertices, 8, 7)
+    );
+    assert_eq!(
+        Drawing::<8, 5, 12>::new().bake(mesh),
+        short(Capacity::Faces, 6, 5)
+    );
+    assert_eq!(
+        Drawing::<8, 6, 11>::new().bake(mesh),
+        short(Capacity::Edges, 12, 11)
+    );
     // A failed bake leaves nothing to draw.
     let mut cube = Drawing::<8, 6, 12>::new();
     cube.bake(mesh).unwrap();
@@ -154,12 +169,12 @@ fn too_small_a_drawing_names_the_size_it_needs() {
     assert_eq!(nothing.map(drop), Err(Error::NothingBaked));
     // Rows narrower, lower, or too low for the line masks of a wide frame.
     let narrow = cube.draw(&camera, &mut FrameRows::<127, 64>::new(), &mut fb);
-    assert_eq!(narrow.map(drop), short(128, 127));
+    assert_eq!(narrow.map(drop), short(Capacity::RowWidth, 128, 127));
     let low = cube.draw(&camera, &mut FrameRows::<128, 63>::new(), &mut fb);
-    assert_eq!(low.map(drop), short(64, 63));
+    assert_eq!(low.map(drop), short(Capacity::Rows, 64, 63));
     let mut wide = PackedFramebuffer::<1000, 4, { packed_len(1000, 4) }>::new();
     let masks = cube.draw(&camera, &mut FrameRows::<1000, 4>::new(), &mut wide);
-    assert_eq!(masks.map(drop), short(64, 4));
+    assert_eq!(masks.map(drop), short(Capacity::LineMasks, 64, 4));
     assert!(
         fb.as_bytes().iter().all(|&b| b == 0),
         "nothing drawn on error"
@@ -193,6 +208,9 @@ fn the_readme_quotes_the_crate_doctest_and_the_firmware_runs_its_lines() {
     assert!(lines.len() <= 15, "{} lines", lines.len());
     let root = host_tests::obj::workspace_root();
     let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+    // Its hidden lines (`# ...`, compiled but not shown) are left out on both sides.
+    let readme: Vec<&str> = readme.lines().filter(|l| !l.starts_with("# ")).collect();
+    let readme = readme.join("\n");
     let quoted = format!("```rust\n{}\n```", lines.join("\n"));
     assert!(readme.contains(&quoted), "README does not quote:\n{quoted}");
     // The firmware draws into its framebuffer, not a MockDisplay: every line but

@@ -407,7 +407,9 @@ fn valid_scenes_never_panic_or_write_outside_the_target() {
             };
             let allowed = match result {
                 Ok(_) => true,
-                Err(Error::CapacityExceeded { needed, capacity }) => needed > capacity,
+                Err(Error::CapacityExceeded {
+                    needed, capacity, ..
+                }) => needed > capacity,
                 Err(Error::CodeTooWide { needed, capacity }) => needed > capacity && capacity == 32,
                 Err(Error::OutOfRange) => true,
                 // More fragments than face ids can name.

@@ -5,6 +5,7 @@
 //! One test binary; each module is one suite (`cargo test -p host_tests --test robustness
 //! MODULE::`).
 
+mod capacity;
 mod engine_time;
 mod fuzz_codes;
 mod fuzz_properties;

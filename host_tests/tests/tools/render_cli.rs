@@ -396,7 +396,10 @@ fn grey_past_its_faces_at_a_pixel_names_the_flag() {
         &render(&[&args[..], &["--grey", s(&grey)]].concat()),
         "--grey: ",
     );
-    assert!(err.contains("capacity 64 exceeded"), "{err}");
+    assert!(
+        err.contains("A-buffer faces at a pixel: 65 needed, capacity 64"),
+        "{err}"
+    );
     assert!(!err.contains("render: render:"), "{err}");
 }
 

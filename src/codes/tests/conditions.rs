@@ -1,6 +1,7 @@
 //! Each broken condition is an `Err` that names it, never a wrong table.
 
 use super::*;
+use crate::Capacity;
 use crate::Error;
 use std::string::ToString;
 
@@ -191,6 +192,7 @@ fn scheme_2_has_room_for_16_paths_with_the_8_4_code_and_32_with_the_16_11_code()
         assert_eq!(
             coset_path_codes::<16>(&graph, hamming, data, &mut paths[..=room]),
             Err(Error::CapacityExceeded {
+                what: Capacity::PathCodes,
                 needed: room + 1,
                 capacity: room
             })
@@ -250,7 +252,13 @@ fn scheme_3_needs_room_for_the_priorities_and_paths_below_the_node_field() {
 
 #[test]
 fn colour_tables_that_do_not_fit_say_how_many_rows_they_need() {
-    let full = |needed, capacity| Err(Error::CapacityExceeded { needed, capacity });
+    let full = |needed, capacity| {
+        Err(Error::CapacityExceeded {
+            what: Capacity::ColourTableRows,
+            needed,
+            capacity,
+        })
+    };
     let codes = [0b0001, 0b0010, 0b0100, 0b1000];
     let scheme_1 = CombinationScheme::<4>::new(fig_2(), &codes).unwrap();
     assert_eq!(scheme_1.colour_table::<9>().map(|_| ()), full(10, 9));

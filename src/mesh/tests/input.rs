@@ -1,6 +1,7 @@
 //! Validation, lent capacities and garbage input.
 
 use super::*;
+use crate::Capacity;
 use crate::Error;
 
 #[test]
@@ -104,7 +105,13 @@ fn capacity_errors_give_the_exact_size_needed() {
         [HalfEdgeRecord::EMPTY; 24],
         [MeshEdge::EMPTY; 12],
     );
-    let exceeded = |needed, capacity| Err(Error::CapacityExceeded { needed, capacity });
+    let exceeded = |what, needed, capacity| {
+        Err(Error::CapacityExceeded {
+            what,
+            needed,
+            capacity,
+        })
+    };
     assert_eq!(
         EdgeAdjacency::build(
             &mesh,
@@ -114,19 +121,19 @@ fn capacity_errors_give_the_exact_size_needed() {
             &mut out[..0]
         )
         .map(|_| ()),
-        exceeded(8, 7)
+        exceeded(Capacity::Vertices, 8, 7)
     );
     assert_eq!(
         EdgeAdjacency::build(&mesh, 30.0, &mut weld, &mut scratch[..23], &mut out[..0]).map(|_| ()),
-        exceeded(24, 23)
+        exceeded(Capacity::HalfEdges, 24, 23)
     );
     assert_eq!(
         EdgeAdjacency::build(&mesh, 30.0, &mut weld, &mut scratch, &mut out[..11]).map(|_| ()),
-        exceeded(12, 11)
+        exceeded(Capacity::Edges, 12, 11)
     );
     assert_eq!(
         EdgeAdjacency::build(&mesh, 30.0, &mut weld, &mut scratch, &mut out[..0]).map(|_| ()),
-        exceeded(12, 0)
+        exceeded(Capacity::Edges, 12, 0)
     );
     // The crease angle is checked first.
     for bad in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
@@ -146,11 +153,11 @@ fn capacity_errors_give_the_exact_size_needed() {
     let (mut scratch, mut out) = ([HalfEdgeRecord::EMPTY; 36], [MeshEdge::EMPTY; 18]);
     assert_eq!(
         EdgeAdjacency::build(&mesh, 30.0, &mut weld, &mut scratch[..35], &mut out).map(|_| ()),
-        exceeded(36, 35)
+        exceeded(Capacity::HalfEdges, 36, 35)
     );
     assert_eq!(
         EdgeAdjacency::build(&mesh, 30.0, &mut weld, &mut scratch, &mut out[..17]).map(|_| ()),
-        exceeded(18, 17)
+        exceeded(Capacity::Edges, 18, 17)
     );
     // Larger buffers than needed are fine.
     let mut buffers = Buffers::new();

@@ -5,6 +5,7 @@ use crate::mesh::{Mesh, MAX_FACES};
 use crate::order::bsp::{BspNode, BspTree, NO_NODE};
 use crate::order::plane::Plane;
 use crate::order::seams::{insert_seam_vertices, Seams};
+use crate::Capacity;
 use crate::Error;
 
 /// The output slices and how much of each is used (or would be: the write-only
@@ -33,6 +34,7 @@ impl<'s> Output<'s> {
             .vertices
             .get_mut(..from.len())
             .ok_or(Error::CapacityExceeded {
+                what: Capacity::SplitVertices,
                 needed: from.len(),
                 capacity,
             })?;
@@ -66,6 +68,7 @@ impl<'s> Output<'s> {
             .vertices
             .get_mut(self.vertex_count)
             .ok_or(Error::CapacityExceeded {
+                what: Capacity::SplitVertices,
                 needed: self.vertex_count.saturating_add(more).saturating_add(1),
                 capacity,
             })?;
@@ -73,11 +76,13 @@ impl<'s> Output<'s> {
         let split = self.vertex_count.saturating_sub(self.base);
         let capacity = self.seams.len();
         let seam = self.seams.get_mut(split).ok_or(Error::CapacityExceeded {
+            what: Capacity::SplitSeams,
             needed: split.saturating_add(more).saturating_add(1),
             capacity,
         })?;
         *seam = root;
         let index = u32::try_from(self.vertex_count).map_err(|_| Error::CapacityExceeded {
+            what: Capacity::Index32,
             needed: self.vertex_count.saturating_add(1),
             capacity: u32::MAX as usize,
         })?;
@@ -98,6 +103,7 @@ impl<'s> Output<'s> {
             *s = (word & 0xFFFF) as u16;
         }
         let end_u32 = u32::try_from(end).map_err(|_| Error::CapacityExceeded {
+            what: Capacity::Index32,
             needed: end,
             capacity: u32::MAX as usize,
         })?;
@@ -119,6 +125,7 @@ impl<'s> Output<'s> {
         let id = self.node_count;
         let id_u32 = u32::try_from(id).ok().filter(|&n| n < u32::MAX / 2).ok_or(
             Error::CapacityExceeded {
+                what: Capacity::Index32,
                 needed: id.saturating_add(1),
                 capacity: (u32::MAX / 2) as usize,
             },
@@ -184,11 +191,19 @@ impl<'s> Output<'s> {
         work: &mut [u32],
     ) -> Result<BspTree<'s>, Error> {
         let fragments = self.fragment_count;
-        need(self.node_count, self.nodes.len())?;
-        need(fragments.saturating_add(1), self.offsets.len())?;
-        need(fragments, self.source.len())?;
+        need(Capacity::BspNodes, self.node_count, self.nodes.len())?;
+        need(
+            Capacity::FragmentOffsets,
+            fragments.saturating_add(1),
+            self.offsets.len(),
+        )?;
+        need(Capacity::FragmentSources, fragments, self.source.len())?;
         // Before the seams' split points are inserted: a lower bound.
-        need(self.index_count, self.indices.len())?;
+        need(
+            Capacity::FragmentIndices,
+            self.index_count,
+            self.indices.len(),
+        )?;
         if fragments > MAX_FACES {
             return Err(Error::TooManyFaces {
                 faces: fragments,

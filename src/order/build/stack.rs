@@ -7,6 +7,7 @@ use super::HEADER;
 use crate::mesh::Mesh;
 use crate::order::bsp::{BspOptions, NO_NODE};
 use crate::order::plane::{fan_triangles, fans, Fate, Record, Records, Tally};
+use crate::Capacity;
 use crate::Error;
 
 /// The build's state: the work stack of fragment sets still to be split.
@@ -49,10 +50,11 @@ impl Build<'_, '_, '_> {
         });
         let needed = words.saturating_add(HEADER);
         let capacity = self.work.len();
-        let area = self
-            .work
-            .get_mut(..needed)
-            .ok_or(Error::CapacityExceeded { needed, capacity })?;
+        let area = self.work.get_mut(..needed).ok_or(Error::CapacityExceeded {
+            what: Capacity::OrderWork,
+            needed,
+            capacity,
+        })?;
         let mut at = 0usize;
         let mut put = |value: u32| {
             if let Some(w) = area.get_mut(at) {
@@ -88,6 +90,7 @@ impl Build<'_, '_, '_> {
             .get(at)
             .map(|&w| w as usize)
             .ok_or(Error::CapacityExceeded {
+                what: Capacity::OrderWork,
                 needed: at.saturating_add(1),
                 capacity: self.work.len(),
             })
@@ -99,6 +102,7 @@ impl Build<'_, '_, '_> {
             .top
             .checked_sub(HEADER)
             .ok_or(Error::CapacityExceeded {
+                what: Capacity::OrderWork,
                 needed: HEADER,
                 capacity: self.top,
             })?;
@@ -145,7 +149,11 @@ impl Build<'_, '_, '_> {
         let capacity = self.top.saturating_add(above.len());
         let children = above
             .get_mut(..front_len + back_len)
-            .ok_or(Error::CapacityExceeded { needed, capacity })?;
+            .ok_or(Error::CapacityExceeded {
+                what: Capacity::OrderWork,
+                needed,
+                capacity,
+            })?;
         self.peak = self.peak.max(needed);
         let (front_area, back_area) = children.split_at_mut(front_len);
 
@@ -186,6 +194,7 @@ impl Build<'_, '_, '_> {
         if end > self.work.len() || base > self.top {
             // Unreachable: the children's area was taken from `work` above.
             return Err(Error::CapacityExceeded {
+                what: Capacity::OrderWork,
                 needed: end,
                 capacity: self.work.len(),
             });

@@ -6,6 +6,7 @@ use core::cmp::Reverse;
 
 use super::sort::{Sorter, DEAD};
 use crate::order::plane::Plane;
+use crate::Capacity;
 use crate::Error;
 
 /// An f32 as a u32 of the same order (finite values).
@@ -148,6 +149,7 @@ impl Sorter<'_, '_, '_> {
         let len = self.len;
         if len >= self.list.len() {
             return Err(Self::err(
+                Capacity::OrderWork,
                 len.saturating_add(1).saturating_mul(3),
                 self.work_words,
             ));

@@ -13,6 +13,7 @@ use crate::order::bsp::PLANE_TOLERANCE;
 use crate::order::plane::{fan_triangles, fans, vertex, Plane, Record};
 use crate::order::seams::{insert_seam_vertices, Seams};
 use crate::sort::sort_by_key;
+use crate::Capacity;
 use crate::Error;
 
 /// The mark of a slot whose fragment was split (its pieces replace it).
@@ -127,8 +128,12 @@ fn scene_steps(n: usize) -> usize {
 }
 
 impl<'a> Sorter<'a, '_, '_> {
-    pub(super) fn err(needed: usize, capacity: usize) -> Error {
-        Error::CapacityExceeded { needed, capacity }
+    pub(super) fn err(what: Capacity, needed: usize, capacity: usize) -> Error {
+        Error::CapacityExceeded {
+            what,
+            needed,
+            capacity,
+        }
     }
 
     pub(super) fn at(&self, k: usize) -> u32 {
@@ -174,15 +179,16 @@ impl<'a> Sorter<'a, '_, '_> {
         let capacity = self.vertices.len();
         self.vertices
             .get_mut(..from.len())
-            .ok_or(Self::err(from.len(), capacity))?
+            .ok_or(Self::err(Capacity::SplitVertices, from.len(), capacity))?
             .copy_from_slice(from);
         self.vertex_count = from.len();
         let faces = mesh.face_count();
         let capacity = self.offsets.len();
-        *self
-            .offsets
-            .first_mut()
-            .ok_or(Self::err(faces.saturating_add(1), capacity))? = 0;
+        *self.offsets.first_mut().ok_or(Self::err(
+            Capacity::FragmentOffsets,
+            faces.saturating_add(1),
+            capacity,
+        ))? = 0;
         for f in 0..faces {
             let corners = mesh.face(f);
             if fans(mesh, f, self.tolerance_sq) {
@@ -205,6 +211,7 @@ impl<'a> Sorter<'a, '_, '_> {
             let drawn = !cull || mesh.faces_viewpoint(self.face(f), &viewpoint);
             if drawn && !self.plane(f).is_degenerate() {
                 let slot = self.list.get_mut(self.len).ok_or(Self::err(
+                    Capacity::OrderWork,
                     self.len.saturating_add(1).saturating_mul(3),
                     self.work_words,
                 ))?;
@@ -227,29 +234,38 @@ impl<'a> Sorter<'a, '_, '_> {
         // Face ids are below MAX_FACES < 2^16.
         let face = Record::face(surface) as u16;
         let f = self.slots;
-        let end = u32::try_from(self.index_count).map_err(|_| Self::err(self.index_count, 0))?;
+        let end = u32::try_from(self.index_count)
+            .map_err(|_| Self::err(Capacity::Index32, self.index_count, 0))?;
         let capacity = self.offsets.len();
-        *self
-            .offsets
-            .get_mut(f.saturating_add(1))
-            .ok_or(Self::err(f.saturating_add(2), capacity))? = end;
+        *self.offsets.get_mut(f.saturating_add(1)).ok_or(Self::err(
+            Capacity::FragmentOffsets,
+            f.saturating_add(2),
+            capacity,
+        ))? = end;
         let capacity = self.source.len();
-        *self
-            .source
-            .get_mut(f)
-            .ok_or(Self::err(f.saturating_add(1), capacity))? = face;
+        *self.source.get_mut(f).ok_or(Self::err(
+            Capacity::FragmentSources,
+            f.saturating_add(1),
+            capacity,
+        ))? = face;
         let words = self.work_words;
-        *self
-            .marks
-            .get_mut(f)
-            .ok_or(Self::err(f.saturating_add(1).saturating_mul(3), words))? = 0;
-        *self
-            .surfaces
-            .get_mut(f)
-            .ok_or(Self::err(f.saturating_add(1).saturating_mul(3), words))? = surface;
+        *self.marks.get_mut(f).ok_or(Self::err(
+            Capacity::OrderWork,
+            f.saturating_add(1).saturating_mul(3),
+            words,
+        ))? = 0;
+        *self.surfaces.get_mut(f).ok_or(Self::err(
+            Capacity::OrderWork,
+            f.saturating_add(1).saturating_mul(3),
+            words,
+        ))? = surface;
         let capacity = self.boxes.len();
         if f >= capacity {
-            return Err(Self::err(f.saturating_add(1), capacity));
+            return Err(Self::err(
+                Capacity::SortBoxes,
+                f.saturating_add(1),
+                capacity,
+            ));
         }
         self.slots = f + 1;
         let extent = self.measure(f);
@@ -294,10 +310,11 @@ impl<'a> Sorter<'a, '_, '_> {
     pub(super) fn put(&mut self, v: u32) -> Result<(), Error> {
         let capacity = self.indices.len();
         let at = self.index_count;
-        *self
-            .indices
-            .get_mut(at)
-            .ok_or(Self::err(at.saturating_add(1), capacity))? = v;
+        *self.indices.get_mut(at).ok_or(Self::err(
+            Capacity::FragmentIndices,
+            at.saturating_add(1),
+            capacity,
+        ))? = v;
         self.index_count = at + 1;
         Ok(())
     }
@@ -306,17 +323,20 @@ impl<'a> Sorter<'a, '_, '_> {
     pub(super) fn push_vertex(&mut self, p: [f32; 3], root: [u32; 2]) -> Result<u32, Error> {
         let n = self.vertex_count;
         let capacity = self.vertices.len();
-        *self
-            .vertices
-            .get_mut(n)
-            .ok_or(Self::err(n.saturating_add(1), capacity))? = p;
+        *self.vertices.get_mut(n).ok_or(Self::err(
+            Capacity::SplitVertices,
+            n.saturating_add(1),
+            capacity,
+        ))? = p;
         let k = n.saturating_sub(self.base);
         let capacity = self.seams.len();
-        *self
-            .seams
-            .get_mut(k)
-            .ok_or(Self::err(k.saturating_add(1), capacity))? = root;
-        let index = u32::try_from(n).map_err(|_| Self::err(n, u32::MAX as usize))?;
+        *self.seams.get_mut(k).ok_or(Self::err(
+            Capacity::SplitSeams,
+            k.saturating_add(1),
+            capacity,
+        ))? = root;
+        let index =
+            u32::try_from(n).map_err(|_| Self::err(Capacity::Index32, n, u32::MAX as usize))?;
         self.vertex_count = n + 1;
         Ok(index)
     }
@@ -394,7 +414,7 @@ impl<'a> Sorter<'a, '_, '_> {
     where
         'a: 's,
     {
-        need(live, rank.len())?;
+        need(Capacity::FragmentRanks, live, rank.len())?;
         let mut others = drawn;
         for (f, r) in rank.iter_mut().enumerate().take(live) {
             let place = self.marks.get(f).copied().unwrap_or(NOT_DRAWN) as usize;
@@ -431,7 +451,11 @@ impl<'a> Sorter<'a, '_, '_> {
         let roots = roots.get(..points).unwrap_or(roots);
         // The list is done with: its third of `work` sorts the split points.
         if points > list.len() {
-            return Err(Self::err(points.saturating_mul(3), work_words));
+            return Err(Self::err(
+                Capacity::OrderWork,
+                points.saturating_mul(3),
+                work_words,
+            ));
         }
         let seams = Seams {
             vertices,

@@ -5,6 +5,7 @@
 use super::*;
 use crate::camera::{Camera, Projection};
 use crate::mesh::Mesh;
+use crate::Capacity;
 use crate::Error;
 
 const V: usize = 512;
@@ -505,7 +506,7 @@ fn too_little_storage_is_capacity_exceeded() {
         },
     );
     assert!(
-        matches!(got, Err(Error::CapacityExceeded { needed, capacity }) if needed > capacity),
+        matches!(got, Err(Error::CapacityExceeded { needed, capacity, .. }) if needed > capacity),
         "{got:?}"
     );
     // The sizes for the splits it makes suffice.
@@ -551,6 +552,7 @@ fn too_little_storage_is_capacity_exceeded() {
     assert_eq!(
         got.err(),
         Some(Error::CapacityExceeded {
+            what: Capacity::FragmentRanks,
             needed: order.fragment_count(),
             capacity: 2
         })

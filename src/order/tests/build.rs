@@ -1,6 +1,7 @@
 //! The build: cycles and interpenetration split, capacities and sizes.
 
 use super::*;
+use crate::Capacity;
 
 #[test]
 fn cyclic_sticks_are_split_and_rays_see_the_nearest_first() {
@@ -107,29 +108,44 @@ fn capacity_errors_name_the_need_and_never_panic() {
 
     // Exact needs: the slices only written.
     let mut store = Store::new();
-    let exceeded = |needed, capacity| Err(Error::CapacityExceeded { needed, capacity });
+    let exceeded = |what, needed, capacity| {
+        Err(Error::CapacityExceeded {
+            what,
+            needed,
+            capacity,
+        })
+    };
     let mut s = store.storage();
     s.nodes = &mut core::mem::take(&mut s.nodes)[..nodes - 1];
     assert_eq!(
         BspTree::build(&mesh, s).map(|_| ()),
-        exceeded(nodes, nodes - 1)
+        exceeded(Capacity::BspNodes, nodes, nodes - 1)
     );
     let mut s = store.storage();
     s.offsets = &mut core::mem::take(&mut s.offsets)[..f];
-    assert_eq!(BspTree::build(&mesh, s).map(|_| ()), exceeded(f + 1, f));
+    assert_eq!(
+        BspTree::build(&mesh, s).map(|_| ()),
+        exceeded(Capacity::FragmentOffsets, f + 1, f)
+    );
     let mut s = store.storage();
     s.source = &mut core::mem::take(&mut s.source)[..2];
-    assert_eq!(BspTree::build(&mesh, s).map(|_| ()), exceeded(f, 2));
+    assert_eq!(
+        BspTree::build(&mesh, s).map(|_| ()),
+        exceeded(Capacity::FragmentSources, f, 2)
+    );
     let mut s = store.storage();
     s.indices = &mut core::mem::take(&mut s.indices)[..index_count - 1];
     assert_eq!(
         BspTree::build(&mesh, s).map(|_| ()),
-        exceeded(index_count, index_count - 1)
+        exceeded(Capacity::FragmentIndices, index_count, index_count - 1)
     );
     let mut s = store.storage();
     s.nodes = &mut [];
     s.indices = &mut [];
-    assert_eq!(BspTree::build(&mesh, s).map(|_| ()), exceeded(nodes, 0));
+    assert_eq!(
+        BspTree::build(&mesh, s).map(|_| ()),
+        exceeded(Capacity::BspNodes, nodes, 0)
+    );
 
     // Lower bounds: the slices the build reads back.
     for capacity in [0, 11, 12, vertex_count - 1] {
@@ -137,6 +153,7 @@ fn capacity_errors_name_the_need_and_never_panic() {
         s.vertices = &mut core::mem::take(&mut s.vertices)[..capacity];
         match BspTree::build(&mesh, s) {
             Err(Error::CapacityExceeded {
+                what: Capacity::SplitVertices,
                 needed,
                 capacity: c,
             }) => {
@@ -151,6 +168,7 @@ fn capacity_errors_name_the_need_and_never_panic() {
         s.work = &mut core::mem::take(&mut s.work)[..capacity];
         match BspTree::build(&mesh, s) {
             Err(Error::CapacityExceeded {
+                what: Capacity::OrderWork,
                 needed,
                 capacity: c,
             }) => {
@@ -171,15 +189,15 @@ fn capacity_errors_name_the_need_and_never_panic() {
     let (mut stack, mut rank) = ([0u32; 64], [0u32; 64]);
     assert_eq!(
         tree.rank_front_to_back(&view, &mut stack[..depth - 1], &mut rank),
-        exceeded(depth, depth - 1)
+        exceeded(Capacity::BspStack, depth, depth - 1)
     );
     assert_eq!(
         tree.rank_front_to_back(&view, &mut stack, &mut rank[..f - 1]),
-        exceeded(f, f - 1)
+        exceeded(Capacity::FragmentRanks, f, f - 1)
     );
     assert_eq!(
         tree.rank_front_to_back(&view, &mut [], &mut []),
-        exceeded(depth, 0)
+        exceeded(Capacity::BspStack, depth, 0)
     );
     assert!(tree
         .rank_front_to_back(&view, &mut stack[..depth], &mut rank[..f])

@@ -69,8 +69,8 @@ mod zbuffer;
 pub use codefill::{CodeFillRenderer, CodeWorkspace, DepthOrder, RowCodes, Visibility};
 pub use fast::{
     BakedMesh, BakedSource, CompactEdge, DashPhase, FacePlane, FastRenderer, FastVertex,
-    FastWorkspace, FAST_MAX_SUBPIXEL_BITS, MAX_CHECKED_FACES, MAX_CORNERS, MAX_FAST_FACES,
-    MAX_HOLES, NO_HOLE,
+    FastWorkspace, FrameNeeds, FAST_MAX_SUBPIXEL_BITS, MAX_CHECKED_FACES, MAX_CORNERS,
+    MAX_FAST_FACES, MAX_HOLES, NO_HOLE,
 };
 pub use painter::{PaintOrder, PainterRenderer};
 pub use raycast::{

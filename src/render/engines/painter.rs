@@ -21,6 +21,7 @@ use crate::render::depth::coverage::{covers_centre, fragments_may_overlap};
 use crate::render::idpass::{render_ids, FrameInput, IdPass, IdWorkspace};
 use crate::render::transform::{ProjectedVertex, ScreenVertex};
 use crate::render::{bit, index_polygon, need, FrameCtx, Settings, Stats};
+use crate::Capacity;
 use crate::{Error, FillRule, ScanConverter, ScreenPoint, Span, SpanSink, Viewport};
 
 /// The list a [`PainterRenderer`] paints.
@@ -84,7 +85,7 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> PainterRenderer<Frac,
                 (o.surfaces, Some(o.source), Some(o.rank))
             }
         };
-        need(surfaces.face_count(), list.len()).map_err(Error::widen)?;
+        need(Capacity::DepthOrder, surfaces.face_count(), list.len()).map_err(Error::widen)?;
         let input = FrameInput {
             mesh,
             positions: surfaces.vertices(),
@@ -332,6 +333,7 @@ mod tests {
         assert_eq!(
             paint(&v, &idx, &off, 1),
             Err(Error::CapacityExceeded {
+                what: Capacity::DepthOrder,
                 needed: 2,
                 capacity: 1
             })

@@ -36,6 +36,7 @@ use crate::render::compose::{Flat, FrameProbe, Palette};
 use crate::render::idpass::{render_ids, FrameInput, IdPass, IdWorkspace};
 use crate::render::transform::{ProjectedVertex, ScreenVertex};
 use crate::render::{bit, face_polygon, need, FrameCtx, Settings, Stats};
+use crate::Capacity;
 use crate::{Error, FillRule, ScanConverter, ScreenPoint, Span, SpanSink, Viewport};
 
 /// Which path of the occlusion graph each pixel lies on: the paper's screen
@@ -155,6 +156,7 @@ impl<'a, const W: usize, const E: usize> SchemeCoding<'a, W, E> {
         match self.table.lookup(code) {
             Some(Visible::Blank) => Ok(0),
             Some(Visible::Surface(s)) => s.checked_add(1).ok_or(Error::CapacityExceeded {
+                what: Capacity::SurfaceIds,
                 needed: usize::from(s) + 1,
                 capacity: usize::from(u16::MAX),
             }),
@@ -236,7 +238,12 @@ impl<Frac: LeEqU32, const EDGES: usize, const POLY: usize> SchemeRenderer<Frac, 
                 expected: mesh.face_count(),
             }));
         }
-        need(usize::from(sink.viewport().width), codes.len()).map_err(Error::widen)?;
+        need(
+            Capacity::RowCodes,
+            usize::from(sink.viewport().width),
+            codes.len(),
+        )
+        .map_err(Error::widen)?;
         let input = FrameInput::of_mesh(mesh, edges, camera, settings, Subpixel::<Frac>::BITS);
         let mut pass = Fill::<Frac, EDGES, POLY, W, E> {
             scan: &mut self.scan,

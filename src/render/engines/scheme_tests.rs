@@ -95,6 +95,7 @@ fn less_than_a_row_of_codes_is_a_capacity_error() {
     assert_eq!(
         draw(&coding, 0),
         Err(Error::CapacityExceeded {
+            what: Capacity::RowCodes,
             needed: 32,
             capacity: 0
         })

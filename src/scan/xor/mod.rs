@@ -13,6 +13,7 @@ pub use row::{prefix_xor, CodeRow};
 use fixed::types::extra::LeEqU32;
 
 use super::{PolygonWalker, RowRuns};
+use crate::Capacity;
 use crate::{Error, ScreenPoint, SpanSink};
 
 /// An even-odd polygon filler that uses a modulo-2 code row instead of sorted
@@ -65,6 +66,7 @@ impl<const EDGES: usize, const WORDS: usize> XorFiller<EDGES, WORDS> {
         let words = width.div_ceil(32);
         if words > WORDS {
             return Err(Error::CapacityExceeded {
+                what: Capacity::RowWords,
                 needed: words,
                 capacity: WORDS,
             });

@@ -35,6 +35,7 @@ use crate::render::depth::plane::RowPlane;
 use crate::render::idpass::{render_ids, FrameInput, IdPass, IdWorkspace};
 use crate::render::transform::{ProjectedVertex, ScreenVertex};
 use crate::render::{bit, index_polygon, need, FrameCtx, Settings, Stats};
+use crate::Capacity;
 use crate::{Error, SpanSink};
 use active::{ActiveEdge, ActiveEdges};
 
@@ -429,7 +430,7 @@ impl<
             }
             count += 1;
         }
-        need(count, order.len())?;
+        need(Capacity::DepthOrder, count, order.len())?;
         if let Some(order) = order.get_mut(..count) {
             crate::sort::sort_by_key(order, |&k| k);
         }

@@ -16,6 +16,7 @@ use crate::render::transform::{ProjectedVertex, ScreenVertex};
 use crate::render::{index_polygon, FrameCtx};
 use crate::scan::edge::{Edge, EdgeLine};
 use crate::scan::RowRange;
+use crate::Capacity;
 use crate::Error;
 
 impl<
@@ -320,6 +321,7 @@ impl<
     ) -> Result<(), Error> {
         let Some(&slot) = self.free.last() else {
             return Err(Error::CapacityExceeded {
+                what: Capacity::ActiveFaces,
                 needed: self.live.len() + 1,
                 capacity: FACES,
             });
@@ -342,6 +344,7 @@ impl<
             let width = ctx.viewport.width;
             if self.edges.insert(edge, slot, ctx.s, width).is_err() {
                 return Err(Error::CapacityExceeded {
+                    what: Capacity::ActiveEdges,
                     needed: self.edges.len() + poly.len() - added,
                     capacity: EDGES,
                 });

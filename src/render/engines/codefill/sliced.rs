@@ -13,6 +13,7 @@ use super::resolve::RowFaces;
 use super::{CodeFillRenderer, Surfaces};
 use crate::render::transform::ProjectedVertex;
 use crate::render::FrameCtx;
+use crate::Capacity;
 use crate::Error;
 
 impl<
@@ -54,6 +55,7 @@ impl<
         let need = width * words + width.div_ceil(32);
         let Some(codes) = codes.get_mut(..need) else {
             return Err(Error::CapacityExceeded {
+                what: Capacity::RowCodes,
                 needed: need,
                 capacity: codes.len(),
             });

@@ -6,6 +6,7 @@
 use heapless::Vec;
 
 use super::facets::{CornerSource, Facet};
+use crate::Capacity;
 use crate::Error;
 
 /// Room for `N` active facets: their slots, the active ones' `face << 16 | slot`
@@ -52,6 +53,7 @@ impl<const N: usize> ActiveFacets<N> {
         build: impl FnOnce(&mut Facet) -> bool,
     ) -> Result<(u16, Option<u16>), Error> {
         let full = Error::CapacityExceeded {
+            what: Capacity::ActiveFacets,
             needed: N + 1,
             capacity: N,
         };

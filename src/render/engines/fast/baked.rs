@@ -9,6 +9,7 @@ use super::edge::{CompactEdge, MAX_HOLES, NO_HOLE};
 use super::holes::label_holes;
 use crate::error::need;
 use crate::mesh::{EdgeAdjacency, EdgeKind, Mesh};
+use crate::Capacity;
 use crate::{EdgeProblem, Error};
 
 /// The most faces and vertices the fast engine names: face ids are 16 bits
@@ -55,8 +56,8 @@ impl<'a> BakedMesh<'a> {
         check_counts(mesh)?;
         let faces = mesh.face_count();
         let all = adjacency.edges();
-        need(faces, planes.len())?;
-        need(all.len(), edges.len())?;
+        need(Capacity::Faces, faces, planes.len())?;
+        need(Capacity::Edges, all.len(), edges.len())?;
         for (f, slot) in planes.iter_mut().enumerate().take(faces) {
             *slot = FacePlane {
                 normal: mesh.face_normal(f),

@@ -6,6 +6,7 @@
 use heapless::Vec;
 
 use super::view::{EyePoint, FastVertex, ScreenMap, ScreenPoint};
+use crate::Capacity;
 use crate::Error;
 
 /// Most corners of a clipped polygon: a face of up to `CLIP_CORNERS - 6` corners
@@ -27,6 +28,7 @@ fn clip_by<T: Copy>(
     let mut out: Poly<T> = Vec::new();
     let mut prev = last;
     let full = Error::CapacityExceeded {
+        what: Capacity::ClippedFaceCorners,
         needed: CLIP_CORNERS + 1,
         capacity: CLIP_CORNERS,
     };
@@ -96,6 +98,7 @@ pub(super) fn clip_polygon(
     for p in corners {
         eye.push(map.eye_space(p))
             .map_err(|_| Error::CapacityExceeded {
+                what: Capacity::ClippedFaceCorners,
                 needed: CLIP_CORNERS + 1,
                 capacity: CLIP_CORNERS - 6,
             })?;
@@ -109,6 +112,7 @@ pub(super) fn clip_polygon(
         screen
             .push(map.screen(e))
             .map_err(|_| Error::CapacityExceeded {
+                what: Capacity::ClippedFaceCorners,
                 needed: CLIP_CORNERS + 1,
                 capacity: CLIP_CORNERS,
             })?;

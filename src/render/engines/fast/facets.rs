@@ -18,6 +18,7 @@ use super::depth_row::{cells, run};
 use super::planes::{det, plane, plane_through, steepest, tie};
 use super::step::{crossing, row_at, EdgeStep};
 use super::view::FastVertex;
+use crate::Capacity;
 use crate::Error;
 
 /// Most corners of a face the fast engine draws without clipping; more is
@@ -528,6 +529,7 @@ impl Facet {
             let b = src.corner(self.corners, self.face, (i + 1) % n).half();
             if let Some(x) = crossing(a, b, y, s) {
                 xs.push(x).map_err(|_| Error::CapacityExceeded {
+                    what: Capacity::FaceCorners,
                     needed: n,
                     capacity: MAX_CORNERS,
                 })?;

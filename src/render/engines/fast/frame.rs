@@ -4,6 +4,7 @@
 
 use fixed::types::extra::LeEqU32;
 
+use crate::Capacity;
 use crate::Pattern;
 
 use super::*;
@@ -112,9 +113,15 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             if depth {
                 let mut f = face_heads.get(y).copied().unwrap_or(NONE);
                 while f != NONE {
-                    pool_used = self
+                    pool_used = match self
                         .activate(baked, &map, vertices, pool, pool_used, slopes, f, yi)
-                        .map_err(Error::widen)?;
+                    {
+                        Ok(used) => used,
+                        Err(e) => {
+                            let e = self.overflow(e, baked, &map, settings, ws, viewport);
+                            return Err(e.widen());
+                        }
+                    };
                     f = face_links.get(usize::from(f)).copied().unwrap_or(NONE);
                 }
                 stats.peak_faces = stats.peak_faces.max(self.facets.len() as u32);
@@ -140,8 +147,12 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                         map: &map,
                         cache: vertices,
                     };
-                    self.activate_line::<ALONG>(dashing, seen, phases, e, &mut stats)
-                        .map_err(Error::widen)?;
+                    if let Err(e) =
+                        self.activate_line::<ALONG>(dashing, seen, phases, e, &mut stats)
+                    {
+                        let e = self.overflow(e, baked, &map, settings, ws, viewport);
+                        return Err(e.widen());
+                    }
                     e = line_links.get(usize::from(e)).copied().unwrap_or(NONE);
                 }
                 let (visible, hidden) = masks.split_at_mut(words);
@@ -229,7 +240,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
     }
 
     /// The lent storage and the frame's limits.
-    fn check(
+    pub(super) fn check(
         &self,
         baked: &BakedMesh<'_>,
         viewport: Viewport,
@@ -254,19 +265,23 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         let mesh = baked.mesh();
         let faces = mesh.face_count();
         let (w, h) = (usize::from(w), usize::from(h));
-        need(mesh.vertices().len(), ws.vertices.len())?;
-        need(faces.div_ceil(32), ws.facing.len())?;
-        need(faces, ws.face_links.len())?;
-        need(faces, ws.slopes.len())?;
-        need(baked.edges().len(), ws.line_links.len())?;
-        need(2 * h, ws.heads.len())?;
-        need(w, ws.row.len())?;
-        need(line_masks(along) * w.div_ceil(32), ws.masks.len())?;
+        need(Capacity::Vertices, mesh.vertices().len(), ws.vertices.len())?;
+        need(Capacity::FaceBits, faces.div_ceil(32), ws.facing.len())?;
+        need(Capacity::Faces, faces, ws.face_links.len())?;
+        need(Capacity::Faces, faces, ws.slopes.len())?;
+        need(Capacity::Edges, baked.edges().len(), ws.line_links.len())?;
+        need(Capacity::Rows, 2 * h, ws.heads.len())?;
+        need(Capacity::RowWidth, w, ws.row.len())?;
+        need(
+            Capacity::LineMasks,
+            line_masks(along) * w.div_ceil(32),
+            ws.masks.len(),
+        )?;
         if probe {
-            need(w, ws.ids.len())?;
+            need(Capacity::RowWidth, w, ws.ids.len())?;
         }
         if along {
-            need(LINES, ws.phases.len())?;
+            need(Capacity::DashPhases, LINES, ws.phases.len())?;
         }
         Ok(())
     }
@@ -335,6 +350,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         for &v in corners {
             let p = vertices.get(v as usize).copied().unwrap_or_default();
             poly.push(p).map_err(|_| Error::CapacityExceeded {
+                what: Capacity::FaceCorners,
                 needed: n,
                 capacity: MAX_CORNERS,
             })?;
@@ -374,6 +390,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         let room = pool.len().min(usize::from(u16::MAX));
         let Some(slots) = pool.get_mut(pool_used..end).filter(|_| end <= room) else {
             return Err(Error::CapacityExceeded {
+                what: Capacity::ClippedCorners,
                 needed: end,
                 capacity: room,
             });
@@ -463,6 +480,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             let along = ALONG.then(|| (dashing, dash::anchor(map, baked, edge, ea, a)));
             if let Some((line, phase)) = ActiveLine::new(a, b, edge.faces, e, map.s, along) {
                 let full = Error::CapacityExceeded {
+                    what: Capacity::ActiveLines,
                     needed: LINES + 1,
                     capacity: LINES,
                 };

@@ -183,6 +183,27 @@ impl ActiveLine {
         Some((line, phase))
     }
 
+    /// The last row the line is active in when made active at row `y`: where
+    /// [`row`](Self::row) returns false. Off the hot path: for counting a frame's
+    /// peak of active lines after an overflow.
+    pub fn end_row(&self, y: i32, s: u32) -> i32 {
+        let last = i32::from(self.last);
+        if !self.x_major {
+            // One centre a row: the last centre's row, or at once if above.
+            return last.max(y);
+        }
+        // The row of the last centre, stepped as `row` steps it.
+        let mut v = self.v;
+        for _ in 0..(last - i32::from(self.k)).unsigned_abs() {
+            if self.dir > 0 {
+                v.forward();
+            } else {
+                v.back();
+            }
+        }
+        (v.q >> (s + 1)).max(y)
+    }
+
     /// Draws the line's pixels in row `at.y` into the visible and hidden masks, and
     /// its hidden pixels in the gaps of its dashes into `gaps`.
     /// Returns false once the line has no pixel left.

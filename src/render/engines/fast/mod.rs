@@ -59,6 +59,7 @@ mod edge;
 mod facets;
 mod holes;
 mod lines;
+mod needs;
 mod planes;
 mod polygon;
 mod row_out;
@@ -75,6 +76,7 @@ pub use baked::{BakedMesh, BakedSource, FacePlane, MAX_FAST_FACES};
 pub use edge::{CompactEdge, MAX_HOLES, NO_HOLE};
 pub use facets::MAX_CORNERS;
 pub use holes::MAX_CHECKED_FACES;
+pub use needs::FrameNeeds;
 pub use view::FastVertex;
 
 use crate::bits::{bit, set_bit};
@@ -161,7 +163,8 @@ impl FastWorkspace<'_> {
 
 /// The fast engine with S = `Frac` sub-pixel bits (at most
 /// [`FAST_MAX_SUBPIXEL_BITS`]), room for `FACETS` facets and `LINES` feature lines
-/// active on one row (more is `CapacityExceeded`).
+/// active on one row (more is `CapacityExceeded` with the frame's peak:
+/// [`FastRenderer::needs`] counts it, and the clip pool's, without drawing).
 #[derive(Debug)]
 pub struct FastRenderer<Frac: LeEqU32, const FACETS: usize, const LINES: usize> {
     facets: ActiveFacets<FACETS>,

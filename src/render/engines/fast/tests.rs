@@ -12,6 +12,7 @@ use fixed::types::extra::{U4, U7};
 use super::*;
 use crate::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
 use crate::render::{DrawMode, SolidPalette};
+use crate::Capacity;
 use crate::{packed_len, Dashes, FillSolid, PackedFramebuffer, Pattern, Projection};
 
 /// A unit square in the z = 0 plane as two triangles sharing the diagonal 0-2.
@@ -220,6 +221,7 @@ fn too_little_lent_storage_or_room_is_an_error_with_the_size_needed() {
     assert_eq!(
         r.unwrap_err(),
         Error::CapacityExceeded {
+            what: Capacity::Vertices,
             needed: 4,
             capacity: 3
         }
@@ -238,6 +240,7 @@ fn too_little_lent_storage_or_room_is_an_error_with_the_size_needed() {
     assert_eq!(
         r.unwrap_err(),
         Error::CapacityExceeded {
+            what: Capacity::ActiveFacets,
             needed: 2,
             capacity: 1
         }

@@ -4,6 +4,7 @@
 use super::{BvhNode, Cast};
 use crate::render::need;
 use crate::render::transform::ScreenVertex;
+use crate::Capacity;
 use crate::Error;
 
 /// Most faces in a leaf of the hierarchy.
@@ -39,7 +40,7 @@ impl<const POLY: usize> Cast<'_, POLY> {
         if n == 0 {
             return Ok(());
         }
-        need(2 * n - 1, self.nodes.len())?;
+        need(Capacity::BvhNodes, 2 * n - 1, self.nodes.len())?;
         let root = BvhNode {
             count: n as u32,
             ..BvhNode::default()

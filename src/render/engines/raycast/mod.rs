@@ -57,6 +57,7 @@ use crate::render::depth::plane::{DepthPlane, RowPlane};
 use crate::render::idpass::{render_ids, FrameInput, IdPass, IdWorkspace};
 use crate::render::transform::{ProjectedVertex, ScreenVertex};
 use crate::render::{bit, face_polygon, need, FrameCtx, Settings, Stats};
+use crate::Capacity;
 use crate::{Error, SpanSink};
 use bvh::centre_box;
 
@@ -226,8 +227,8 @@ impl<Frac: LeEqU32, const POLY: usize> RaycastRenderer<Frac, POLY> {
         K::Color: PixelColor,
     {
         let sizes = RaycastStorage::sizes(mesh.face_count());
-        need(sizes.faces, storage.faces.len()).map_err(Error::widen)?;
-        need(sizes.nodes, storage.nodes.len()).map_err(Error::widen)?;
+        need(Capacity::RaycastFaces, sizes.faces, storage.faces.len()).map_err(Error::widen)?;
+        need(Capacity::BvhNodes, sizes.nodes, storage.nodes.len()).map_err(Error::widen)?;
         let input = FrameInput::of_mesh(mesh, edges, camera, settings, Subpixel::<Frac>::BITS);
         let mut pass = Cast::<POLY> {
             nodes: storage.nodes,
@@ -279,6 +280,7 @@ impl<const POLY: usize> IdPass for Cast<'_, POLY> {
                 .any(|&v| vertices.get(v as usize).is_none_or(|p| p.outside() != 0));
             let capacity = self.faces.len();
             let slot = self.faces.get_mut(n).ok_or(Error::CapacityExceeded {
+                what: Capacity::RaycastFaces,
                 needed: n + 1,
                 capacity,
             })?;

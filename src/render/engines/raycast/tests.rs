@@ -12,6 +12,7 @@ use super::trace::{fold, Candidates, Hit};
 use super::*;
 use crate::mesh::{HalfEdgeRecord, MeshEdge};
 use crate::render::{Cull, DrawMode, MonoPalette, Workspace, ZBufferRenderer};
+use crate::Capacity;
 use crate::{Dashes, Pattern, Projection, Span, Viewport};
 use embedded_graphics_core::pixelcolor::BinaryColor;
 
@@ -325,6 +326,7 @@ fn too_little_storage_is_an_error_with_the_size_needed() {
     assert_eq!(
         run(5, 2).unwrap_err(),
         Error::CapacityExceeded {
+            what: Capacity::RaycastFaces,
             needed: 3,
             capacity: 2
         }
@@ -332,6 +334,7 @@ fn too_little_storage_is_an_error_with_the_size_needed() {
     assert_eq!(
         run(4, 3).unwrap_err(),
         Error::CapacityExceeded {
+            what: Capacity::BvhNodes,
             needed: 5,
             capacity: 4
         }

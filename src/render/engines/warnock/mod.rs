@@ -65,6 +65,7 @@ use crate::render::depth::plane::DepthPlane;
 use crate::render::idpass::{render_ids, FrameInput, IdPass, IdWorkspace};
 use crate::render::transform::{ProjectedVertex, ScreenVertex};
 use crate::render::{bit, face_polygon, need, FrameCtx, Settings, Stats};
+use crate::Capacity;
 use crate::{Error, SpanSink};
 use area::Areas;
 use geom::{convex_orientation, PixelBox, Rect};
@@ -267,7 +268,7 @@ impl<const POLY: usize> IdPass for Subdivide<'_, POLY> {
             }
             count += 1;
         }
-        need(count, self.storage.faces.len())?;
+        need(Capacity::WarnockFaces, count, self.storage.faces.len())?;
         self.count = count;
         Ok(())
     }
@@ -296,9 +297,10 @@ impl<const POLY: usize> IdPass for Subdivide<'_, POLY> {
             faces,
         } = &mut self.storage;
         let faces = faces.get(..self.count).unwrap_or(&[]);
-        need(3 * levels + 1, areas.len())?;
+        need(Capacity::WarnockAreas, 3 * levels + 1, areas.len())?;
         let (list_bound, list_cap) = (self.count * (levels + 2), lists.len());
         let list_full = || Error::CapacityExceeded {
+            what: Capacity::WarnockLists,
             needed: list_bound,
             capacity: list_cap,
         };

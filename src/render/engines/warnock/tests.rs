@@ -292,6 +292,7 @@ fn too_little_storage_is_an_error_naming_the_size_needed() {
     assert_eq!(
         warnock(&mesh, eye, H, faces),
         Err(Error::CapacityExceeded {
+            what: Capacity::WarnockFaces,
             needed: 2,
             capacity: 1
         })
@@ -305,6 +306,7 @@ fn too_little_storage_is_an_error_naming_the_size_needed() {
     assert_eq!(
         warnock(&mesh, eye, H, areas),
         Err(Error::CapacityExceeded {
+            what: Capacity::WarnockAreas,
             needed: 22,
             capacity: 21
         })
@@ -313,6 +315,7 @@ fn too_little_storage_is_an_error_naming_the_size_needed() {
     assert_eq!(
         warnock(&mesh, eye, H, lists),
         Err(Error::CapacityExceeded {
+            what: Capacity::WarnockLists,
             needed: 18,
             capacity: 3
         })

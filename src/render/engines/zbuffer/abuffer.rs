@@ -27,6 +27,7 @@ use crate::render::depth::plane::DepthPlane;
 use crate::render::lines::Band;
 use crate::render::transform::{ProjectedVertex, ScreenVertex};
 use crate::render::{bit, face_polygon, DrawMode, FrameCtx};
+use crate::Capacity;
 use crate::{Error, Span, SpanSink};
 
 /// The fewest sub-pixel bits for which the sub-samples, at odd eighths of a pixel,
@@ -295,7 +296,7 @@ impl<'p, G: GreyPalette, const POLY: usize> GreyCompose<'p, G, POLY> {
                 found += 1;
             }
         }
-        crate::render::need(found, self.small.len())?;
+        crate::render::need(Capacity::SmallFaces, found, self.small.len())?;
         self.small_len = found;
         Ok(())
     }
@@ -365,6 +366,7 @@ fn neighbourhood(
             // Insertion in order: a few ids.
             let at = ids.iter().position(|&k| k > id).unwrap_or(ids.len());
             ids.insert(at, id).map_err(|_| Error::CapacityExceeded {
+                what: Capacity::PixelCandidates,
                 needed: CANDIDATES + 1,
                 capacity: CANDIDATES,
             })?;

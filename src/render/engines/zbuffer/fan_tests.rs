@@ -156,6 +156,7 @@ fn planarity_kept_per_mesh_draws_the_same_frame_and_is_what_is_read() {
     assert_eq!(
         crate::order::planar_faces(&mesh, &mut []),
         Err(crate::Error::CapacityExceeded {
+            what: crate::Capacity::FaceBits,
             needed: 1,
             capacity: 0
         })
@@ -163,6 +164,7 @@ fn planarity_kept_per_mesh_draws_the_same_frame_and_is_what_is_read() {
     assert_eq!(
         mesh.with_planar_faces(&[]).map(|_| ()),
         Err(crate::Error::CapacityExceeded {
+            what: crate::Capacity::FaceBits,
             needed: 1,
             capacity: 0
         })
