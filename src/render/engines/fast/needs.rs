@@ -68,15 +68,15 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
     /// the tables counted here (the vertex cache in `ws` is the frame's).
     #[cold]
     #[inline(never)]
-    pub(super) fn overflow(
+    pub(super) fn overflow<T>(
         &self,
-        error: Error,
+        error: Error<T>,
         baked: &BakedMesh<'_>,
-        map: &ScreenMap,
+        camera: &Camera,
         settings: &Settings,
         ws: &mut FastWorkspace<'_>,
         viewport: Viewport,
-    ) -> Error {
+    ) -> Error<T> {
         let Error::CapacityExceeded {
             what,
             needed,
@@ -91,7 +91,8 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             Capacity::ClippedCorners => |n| n.clipped_corners,
             _ => return error,
         };
-        let counted = pick(self.count(baked, map, settings, ws, viewport));
+        let map = ScreenMap::new(camera, viewport, Frac::U32, baked.mesh().vertices());
+        let counted = pick(self.count(baked, &map, settings, ws, viewport));
         Error::CapacityExceeded {
             what,
             needed: counted.max(needed),
