@@ -172,7 +172,7 @@ fn out_into_a_missing_directory_is_refused_not_created() {
 #[test]
 fn the_main_command_writes_outside_the_tracked_tree() {
     // `render` without a scene writes target/render.png (git ignores target/), never
-    // a tracked file such as docs/render.png.
+    // a tracked file in docs/.
     let out = render(&["--size", "32x16"]);
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(
