@@ -387,10 +387,26 @@ impl<const V: usize, const F: usize, const E: usize, const FACETS: usize, const 
         target: &mut D,
     ) -> Result<Stats, Error<D::Error>> {
         let mut sink = FillSolid::new(target).map_err(Error::widen)?;
-        let (mut ws, engine) = self
-            .workspace(rows, sink.viewport())
-            .map_err(Error::widen)?;
-        engine.render(mesh, camera, settings, &mut ws, palette, &mut sink, &mut ())
+        let viewport = sink.viewport();
+        let (mut ws, engine) = self.workspace(rows, viewport).map_err(Error::widen)?;
+        match engine.render(mesh, camera, settings, &mut ws, palette, &mut sink, &mut ()) {
+            // A full table: the frame's true need, counted without drawing.
+            Err(Error::CapacityExceeded {
+                what,
+                needed,
+                capacity,
+            }) => {
+                let short = Error::CapacityExceeded {
+                    what,
+                    needed,
+                    capacity,
+                };
+                Err(engine
+                    .with_true_need(short, mesh, camera, settings, &mut ws, viewport)
+                    .widen())
+            }
+            drawn => drawn,
+        }
     }
 
     /// What `mesh` seen by each of `cameras` in frames of `viewport` needs: the

@@ -38,17 +38,21 @@ pub enum Capacity {
     EdgeBits,
     /// Facets active on one row of the fast engine: [`Drawing`](crate::Drawing)'s
     /// `FACETS`, [`FastRenderer`](crate::render::FastRenderer)'s second const
-    /// parameter. Exact: the frame's peak (`Stats::peak_faces` of a frame that fits).
+    /// parameter. From a `Drawing` or `BakedDrawing`, exact: the frame's peak
+    /// (`Stats::peak_faces` of a frame that fits); from `FastRenderer::render`, at
+    /// least (one more than the table), and `FastRenderer::needs` counts the peak.
     ActiveFacets,
     /// Feature lines active on one row of the fast engine:
     /// [`Drawing`](crate::Drawing)'s `LINES`,
     /// [`FastRenderer`](crate::render::FastRenderer)'s third const parameter.
-    /// Exact: the frame's peak (`Stats::peak_edges` of a frame that fits).
+    /// Exact from a `Drawing` (`Stats::peak_edges` of a frame that fits); at least
+    /// from `FastRenderer::render`, as for [`ActiveFacets`](Self::ActiveFacets).
     ActiveLines,
     /// Corners of the clipped faces of one fast-engine frame:
     /// [`FastWorkspace::pool`](crate::render::FastWorkspace::pool) (at most 65,535
     /// are used); fixed at [`CLIPPED_CORNERS`](crate::CLIPPED_CORNERS) in a
-    /// [`Drawing`](crate::Drawing). Exact: the frame's total.
+    /// [`Drawing`](crate::Drawing). Exact from a `Drawing` (the frame's total); at
+    /// least from `FastRenderer::render`, as for [`ActiveFacets`](Self::ActiveFacets).
     ClippedCorners,
     /// Pixels of one row: [`FrameRows`](crate::FrameRows)' `W`; the fast
     /// engine's `row` and `ids`. Exact.

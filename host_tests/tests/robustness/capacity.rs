@@ -185,10 +185,15 @@ fn clipped_corners_needed_is_the_frames_total() {
         cow.draw(&close_up(), &mut rows, &mut fb).map(drop),
         exceeded(Capacity::ClippedCorners, CLIPPED_NEEDED, CLIPPED_CORNERS)
     );
-    // The long form with that pool draws it; one corner less says the same.
+    // The long form with that pool draws it; with one corner less its `render`
+    // names the pool (its row loop does not count: `FastRenderer::needs` does).
     assert!(draw_with_pool(&close_up(), CLIPPED_NEEDED).is_ok());
-    assert_eq!(
-        draw_with_pool(&close_up(), CLIPPED_NEEDED - 1).map(drop),
-        exceeded(Capacity::ClippedCorners, CLIPPED_NEEDED, CLIPPED_NEEDED - 1)
-    );
+    match draw_with_pool(&close_up(), CLIPPED_NEEDED - 1) {
+        Err(Error::CapacityExceeded {
+            what: Capacity::ClippedCorners,
+            needed,
+            capacity,
+        }) => assert!(needed > capacity && capacity == CLIPPED_NEEDED - 1),
+        other => panic!("expected the clip pool to be short: {other:?}"),
+    }
 }

@@ -27,7 +27,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         // Its own copy of the frame loop for dashes along the edges, so that
         // the screen pattern's has no dash work (measured: one loop for both
         // cost the screen pattern's frames 3 to 6 %).
-        let frame = match Dashing::of(settings) {
+        match Dashing::of(settings) {
             Some(d) => {
                 self.frame::<true, K, P, R>(d, baked, camera, settings, ws, palette, sink, probe)
             }
@@ -37,11 +37,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                     none, baked, camera, settings, ws, palette, sink, probe,
                 )
             }
-        };
-        // A full table's true need is counted here, after the row loop has let go
-        // of everything: keeping the counter's inputs alive across the loop cost
-        // the M4 frame 2.5 % (register pressure).
-        frame.map_err(|e| self.overflow(e, baked, camera, settings, ws, sink.viewport()))
+        }
     }
 
     /// [`render`](Self::render), with dashes along the edges `dashing` when

@@ -163,8 +163,10 @@ impl FastWorkspace<'_> {
 
 /// The fast engine with S = `Frac` sub-pixel bits (at most
 /// [`FAST_MAX_SUBPIXEL_BITS`]), room for `FACETS` facets and `LINES` feature lines
-/// active on one row (more is `CapacityExceeded` with the frame's peak:
-/// [`FastRenderer::needs`] counts it, and the clip pool's, without drawing).
+/// active on one row (more is `CapacityExceeded`: its row loop only says the table
+/// is full; [`FastRenderer::needs`] counts the frame's peak, and the clip pool's,
+/// without drawing, and [`FastRenderer::with_true_need`] puts it in the error, as
+/// the short API does).
 #[derive(Debug)]
 pub struct FastRenderer<Frac: LeEqU32, const FACETS: usize, const LINES: usize> {
     facets: ActiveFacets<FACETS>,
