@@ -389,24 +389,9 @@ impl<const V: usize, const F: usize, const E: usize, const FACETS: usize, const 
         let mut sink = FillSolid::new(target).map_err(Error::widen)?;
         let viewport = sink.viewport();
         let (mut ws, engine) = self.workspace(rows, viewport).map_err(Error::widen)?;
-        match engine.render(mesh, camera, settings, &mut ws, palette, &mut sink, &mut ()) {
-            // A full table: the frame's true need, counted without drawing.
-            Err(Error::CapacityExceeded {
-                what,
-                needed,
-                capacity,
-            }) => {
-                let short = Error::CapacityExceeded {
-                    what,
-                    needed,
-                    capacity,
-                };
-                Err(engine
-                    .with_true_need(short, mesh, camera, settings, &mut ws, viewport)
-                    .widen())
-            }
-            drawn => drawn,
-        }
+        let drawn = engine.render(mesh, camera, settings, &mut ws, palette, &mut sink, &mut ());
+        // A full table: the frame's true need, counted without drawing.
+        drawn.map_err(|e| engine.with_true_need(e, mesh, camera, settings, &mut ws, viewport))
     }
 
     /// What `mesh` seen by each of `cameras` in frames of `viewport` needs: the

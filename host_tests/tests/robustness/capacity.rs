@@ -3,13 +3,10 @@
 //! capacity of whichever active table filled first, so that a user with a RAM
 //! budget had to bisect `FACETS` and `LINES` by hand.
 
-use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, MeshEdge};
 use pbuffer::prelude::*;
-use pbuffer::render::{BakedMesh, CompactEdge, FacePlane, FastRenderer, MonoPalette};
+use pbuffer::render::{FastRenderer, MonoPalette};
 use pbuffer::subpixel::U4;
-use pbuffer::{
-    packed_len, DrawingNeeds, PackedFramebuffer, Stats, Viewport, CLIPPED_CORNERS, CREASE_DEG,
-};
+use pbuffer::{packed_len, DrawingNeeds, PackedFramebuffer, Stats, Viewport, CLIPPED_CORNERS};
 
 use host_tests::fast::FastBuffers;
 use host_tests::setup::MeshArrays;
@@ -142,17 +139,11 @@ const CLIPPED_NEEDED: usize = 106;
 
 /// Draws cow.obj in the long form with a clip pool of `pool` corners.
 fn draw_with_pool(camera: &Camera, pool: usize) -> Result<Stats, Error> {
-    let mesh = cow_mesh();
-    let (v, i) = (mesh.vertices().len(), mesh.indices().len());
-    let mut weld = vec![0u32; v];
-    let mut scratch = vec![HalfEdgeRecord::EMPTY; i];
-    let mut store = vec![MeshEdge::EMPTY; i];
-    let adjacency = EdgeAdjacency::build(&mesh, CREASE_DEG, &mut weld, &mut scratch, &mut store)
-        .expect("edges");
-    let mut planes = vec![FacePlane::default(); mesh.face_count()];
-    let mut edges = vec![CompactEdge::default(); adjacency.edges().len()];
-    BakedMesh::bake(&mesh, &adjacency, &mut planes, &mut edges).expect("bakes");
-    let baked = BakedMesh::new(mesh, &planes, &edges).expect("checks");
+    let a = cow_arrays();
+    let bake = host_tests::firmware::Bake::new(&a.vertices, &a.indices, &a.offsets);
+    let baked = bake.baked();
+    let mesh = baked.mesh();
+    let (v, edges) = (mesh.vertices().len(), baked.edges());
     let mut buffers = FastBuffers::new(v, mesh.face_count(), edges.len(), 128, 64, pool);
     let mut ws = buffers.workspace();
     ws.ids = &mut [];

@@ -41,6 +41,9 @@ pub const FAST: usize = 4;
 /// Index into [`ENGINES`] of code fill in depth order, the exact engine whose S
 /// sweep runs to 8.
 pub const CODEFILL: usize = 0;
+// The two indices name the engines they say, or the build fails.
+const _: () = assert!(matches!(ENGINES[FAST].0, EngineSpec::Fast));
+const _: () = assert!(matches!(ENGINES[CODEFILL].0, EngineSpec::CodeFill));
 
 /// Depth bits the Z-buffer engine offers (`Depth` is implemented for `u16` and `u32`
 /// only: there is no 24-bit sample).

@@ -71,15 +71,15 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
     /// 2.5 % (its inputs stayed alive across the loop).
     #[cold]
     #[inline(never)]
-    pub fn with_true_need(
+    pub fn with_true_need<T>(
         &self,
-        error: Error,
+        error: Error<T>,
         baked: &BakedMesh<'_>,
         camera: &Camera,
         settings: &Settings,
         ws: &mut FastWorkspace<'_>,
         viewport: Viewport,
-    ) -> Error {
+    ) -> Error<T> {
         let Error::CapacityExceeded {
             what,
             needed,
@@ -117,6 +117,8 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         let h = usize::from(viewport.height);
         let s = map.s;
         let mut needs = FrameNeeds::default();
+        // Each pass counts in the other kind's half of the list heads, so the lists
+        // are built again for the second.
         if settings.mode.needs_depth() {
             self.lists(baked, map, settings, ws, viewport);
             let FastWorkspace {
