@@ -299,11 +299,19 @@ pub fn torus(nu: u32, nv: u32, big_r: f64, small_r: f64) -> MeshData {
 /// triangles each) of radius `r` from y = 0 to y = `h`, their fronts outward.
 /// Open, so both sides are drawn.
 pub fn open_cylinder(n: u32, r: f64, h: f64, split: bool) -> MeshData {
+    cup(n, r, r, h, split)
+}
+
+/// A cup: an open cone frustum around the Y axis (no caps), radius `r_bottom` at
+/// y = 0 and `r_top` at y = `h`, `n` quads (or, `split`, two triangles each), their
+/// fronts outward. Both rims are boundary edges; open, so both sides are drawn.
+pub fn cup(n: u32, r_bottom: f64, r_top: f64, h: f64, split: bool) -> MeshData {
     let mut m = MeshData::default();
     for i in 0..n {
         let u = std::f64::consts::TAU * f64::from(i) / f64::from(n);
-        m.vertices.push([r * u.cos(), 0.0, -r * u.sin()]);
-        m.vertices.push([r * u.cos(), h, -r * u.sin()]);
+        m.vertices
+            .push([r_bottom * u.cos(), 0.0, -r_bottom * u.sin()]);
+        m.vertices.push([r_top * u.cos(), h, -r_top * u.sin()]);
     }
     for i in 0..n {
         let j = (i + 1) % n;

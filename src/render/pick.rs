@@ -121,11 +121,19 @@ pub fn pick<Frac: LeEqU32, const POLY: usize>(
             continue;
         };
         let mut point = None;
-        walk_segment(&a, &b, s, viewport.width, y..y + 1, |px| {
-            if px.x == x && px.y == y {
-                point = Some(px);
-            }
-        });
+        walk_segment(
+            &a,
+            &b,
+            s,
+            &ctx.view.depth_grid(),
+            viewport.width,
+            y..y + 1,
+            |px| {
+                if px.x == x && px.y == y {
+                    point = Some(px);
+                }
+            },
+        );
         let Some(px) = point else { continue };
         let mut in_front = 0u16;
         if settings.mode != super::DrawMode::Wireframe {

@@ -132,6 +132,32 @@ const Q_FLOOR: i64 = 1 << 25;
 /// Nearness units from the farthest to the nearest drawn distance.
 const Q_SPAN: i64 = (1 << 31) - Q_FLOOR;
 
+/// Clip units by which the rounding of positions, of the rotation's products and
+/// of the eye may move a vertex's distance, for two vertices together.
+const GRID_UNITS: f32 = 4.0;
+/// Units of nearness the projection's rounding may add.
+const Q_ROUNDING: u32 = 8;
+
+/// How far the clip grid's rounding may move a point's nearness `q`: [`GRID_UNITS`]
+/// clip units of distance, converted at the point's own distance (under perspective
+/// nearness changes as `1/z`, so far points get the finer steps that the frame's
+/// depth range gives them there), plus the projection's rounding.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub(crate) struct DepthGrid {
+    offset: f32,
+    scale: f32,
+    flat: f32,
+}
+
+impl DepthGrid {
+    /// The uncertainty of nearness `q`, in nearness units.
+    pub fn slack(&self, q: u32) -> u32 {
+        let u = q as f32 + self.offset;
+        let slack = self.flat + self.scale * u * u;
+        (slack.min(Q_SPAN as f32) as u32).saturating_add(Q_ROUNDING)
+    }
+}
+
 /// Planes, in clipping order: near, far, then the guard band's four sides.
 const PLANES: usize = 6;
 
@@ -257,6 +283,32 @@ impl FixedView {
         }
         if lo <= hi {
             (self.z_lo, self.z_hi) = (lo, hi);
+        }
+    }
+
+    /// How far the clip grid may put a point's nearness from the true one, as a
+    /// function of the nearness (see [`DepthGrid`]).
+    pub fn depth_grid(&self) -> DepthGrid {
+        let (lo, hi) = (self.z_lo as f32, self.z_hi as f32);
+        if hi <= lo {
+            return DepthGrid::default();
+        }
+        let span = Q_SPAN as f32;
+        if self.perspective {
+            // u = q - Q_FLOOR + Q_SPAN lo / (hi - lo) = Q_SPAN lo hi / ((hi - lo) z),
+            // and |dq/dz| = u^2 (hi - lo) / (Q_SPAN lo hi).
+            let lo = lo.max(1.0);
+            DepthGrid {
+                offset: span * lo / (hi - lo) - Q_FLOOR as f32,
+                scale: GRID_UNITS * (hi - lo) / (span * lo * hi),
+                flat: 0.0,
+            }
+        } else {
+            DepthGrid {
+                offset: 0.0,
+                scale: 0.0,
+                flat: GRID_UNITS * span / (hi - lo),
+            }
         }
     }
 

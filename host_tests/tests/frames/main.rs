@@ -8,14 +8,17 @@
 mod bsp_order;
 mod code_schemes;
 mod dashes_along;
+mod depth_precision;
 mod engines_agree;
 mod far_coordinates;
 mod fast_vs_reference;
 mod feature_edges;
 mod grey_vs_reference;
+mod line_test;
 mod newell_order;
 mod non_planar_faces;
 mod open_mesh;
 mod pick;
 mod pipeline_vs_reference;
+mod random_views;
 mod short_api;

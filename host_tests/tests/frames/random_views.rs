@@ -1,0 +1,329 @@
+//! Random views against the f64 reference: checks that find line-test and depth
+//! faults without being told where. From a fixed seed, 32 views of every model in
+//! `../shared/models` and of three open, tapered procedural shapes (a cup, a funnel,
+//! an open cylinder; culling off, so their insides show): eye direction uniform
+//! over the sphere within 80 degrees of the horizon, target within a fifth of the
+//! radius of the centre; each of the four combinations of perspective (fov 30 to 60
+//! degrees, the whole model in view or up to 1.6 times closer than that) or
+//! orthographic projection and 400x240 or 128x64 on eight of them.
+//!
+//! Every view: the default engine (fast, S = 4) and the Z-buffer (S = 4), dashed,
+//! their face ids and line classes against the reference with the report's limits
+//! (`host_tests::metrics`): no holes; the Z-buffer exact (no wrong faces, no
+//! depth-order errors, no face-id differences away from edges), the fast engine at
+//! most 0.05 % of the covered pixels away from edges; line pixels misclassified at
+//! most 0.5 %, stray at most 0.5 %, visible and hidden length missing at most 1 %
+//! each. Every eighth view: the other exact engines too (scan-line, code fill,
+//! Warnock, ray casting) under the Z-buffer's rules.
+//!
+//! `PBUFFER_SWEEP_VIEWS=N` and `PBUFFER_SWEEP_SEED=S` change the run
+//! (`scripts/sweep` runs more views and prints the count and the time).
+//! `cargo test --release -p host_tests --test frames random_views:: -- --nocapture`.
+
+use std::time::Instant;
+
+use host_tests::fit::used_vertex_bounds;
+use host_tests::frame::{
+    CameraSpec, CullSpec, EngineSpec, Frame, MeshData, ModeSpec, ProjectionSpec, RenderSpec,
+};
+use host_tests::metrics::{compare, near_edge_mask};
+use host_tests::pipeline::render_frame;
+use host_tests::random::Rng;
+use host_tests::reference3d::{reference_frame, RefFrame};
+use host_tests::shapes::{cup, open_cylinder};
+use host_tests::tools::report::{load_scene, MODELS};
+
+/// Views of each mesh, and the seed, unless the environment says otherwise.
+const VIEWS: usize = 32;
+const SEED: u64 = 20_261_127;
+
+/// The limit on face-id differences away from edges for the approximate engine,
+/// per cent of the pixels the reference covers away from edges.
+const FAR_PCT: f64 = 0.05;
+
+/// Where the default engine is over the limits in this sweep today, measured: the
+/// mesh, the view, and the misclassified share it is held to instead (per cent).
+/// Anything else over the limits fails.
+const FAST_OVER: [(&str, usize, f64); 0] = [];
+
+/// One view: its camera and size.
+#[derive(Clone, Debug)]
+struct View {
+    camera: CameraSpec,
+    size: (usize, usize),
+}
+
+/// The meshes of the sweep: the models, then the procedural open shapes.
+fn meshes() -> Vec<(String, MeshData, CullSpec)> {
+    let mut out: Vec<(String, MeshData, CullSpec)> = MODELS
+        .iter()
+        .map(|name| {
+            let scene = load_scene(name).unwrap_or_else(|e| panic!("{name}: {e}"));
+            (name.to_string(), scene.mesh, CullSpec::Auto)
+        })
+        .collect();
+    out.push(("cup".into(), cup(24, 0.6, 1.0, 2.0, false), CullSpec::Off));
+    out.push(("funnel".into(), cup(32, 1.0, 0.3, 1.5, true), CullSpec::Off));
+    out.push((
+        "open cylinder".into(),
+        open_cylinder(48, 0.5, 3.0, false),
+        CullSpec::Off,
+    ));
+    out
+}
+
+/// `count` random views of `mesh`, the k-th one's projection and size the k-th of
+/// the four combinations.
+fn views(mesh: &MeshData, count: usize, rng: &mut Rng) -> Vec<View> {
+    let (c, r) = used_vertex_bounds(mesh);
+    (0..count)
+        .map(|k| {
+            let azimuth = rng.range(0.0, std::f64::consts::TAU);
+            let elevation = rng
+                .range(-80f64.to_radians().sin(), 80f64.to_radians().sin())
+                .asin();
+            let dir = [
+                elevation.cos() * azimuth.cos(),
+                elevation.sin(),
+                elevation.cos() * azimuth.sin(),
+            ];
+            let target = [0, 1, 2].map(|i| c[i] + rng.range(-0.2, 0.2) * r);
+            let size = if k % 4 < 2 { (400, 240) } else { (128, 64) };
+            let (projection, dist) = if k % 2 == 0 {
+                let fov = rng.range(30.0, 60.0);
+                let fit = r / (fov.to_radians() / 2.0).sin();
+                let closer = rng.range(1.0, 1.6);
+                (
+                    ProjectionSpec::Perspective { fov_deg: fov },
+                    fit / closer.min(fit / (1.2 * r)),
+                )
+            } else {
+                let half = r * rng.range(0.6, 1.2);
+                (ProjectionSpec::Orthographic { half_height: half }, 3.0 * r)
+            };
+            View {
+                camera: CameraSpec {
+                    eye: [0, 1, 2].map(|i| target[i] + dist * dir[i]),
+                    target,
+                    up: [0.0, 1.0, 0.0],
+                    projection,
+                    near: 0.01 * r,
+                    far: 100.0 * r,
+                },
+                size,
+            }
+        })
+        .collect()
+}
+
+/// Pixels the reference covers more than 1 px from every projected edge.
+fn covered_away(rf: &RefFrame) -> usize {
+    let near = near_edge_mask(rf, 1.0);
+    rf.ids
+        .iter()
+        .zip(&near)
+        .filter(|(&id, &n)| id != 0 && !n)
+        .count()
+}
+
+/// The sweep's verdict on one frame: `Err` with the reasons when it is over the
+/// limits (`exact`: the Z-buffer's rules; else the approximate engine's, with
+/// misclassified lines held to `line_pct` per cent).
+fn judge(
+    label: &str,
+    frame: &Frame,
+    rf: &RefFrame,
+    exact: bool,
+    line_pct: f64,
+) -> Result<(), String> {
+    let m = compare(label, frame, rf, true, true);
+    if exact {
+        return m.check();
+    }
+    let (s, l) = (m.surfaces.as_ref().unwrap(), m.lines.as_ref().unwrap());
+    let mut why = Vec::new();
+    if s.holes > 0 {
+        why.push(format!("{} holes (first at {:?})", s.holes, s.first[0]));
+    }
+    let far = s.far_diffs + s.wrong_faces + s.depth_order;
+    let far_pct = 100.0 * far as f64 / covered_away(rf).max(1) as f64;
+    if far_pct > FAR_PCT {
+        why.push(format!("far face-id differences {far_pct:.3} % ({far})"));
+    }
+    let pct = |f: f64| 100.0 * f;
+    if pct(l.misclassified_fraction()) > line_pct {
+        why.push(format!(
+            "misclassified line pixels {:.3} % (first at {:?})",
+            pct(l.misclassified_fraction()),
+            l.first_misclassified
+        ));
+    }
+    for (what, f, limit) in [
+        ("stray line pixels", l.stray_fraction(), 0.5),
+        ("visible length missing", l.visible_missing_fraction(), 1.0),
+        ("hidden length missing", l.hidden_missing_fraction(), 1.0),
+    ] {
+        if pct(f) > limit {
+            why.push(format!("{what} {:.3} %", pct(f)));
+        }
+    }
+    if why.is_empty() {
+        Ok(())
+    } else {
+        Err(format!("{label}: {}", why.join("; ")))
+    }
+}
+
+/// The render settings of a view: dashed, S = 4, full frame.
+fn spec(engine: EngineSpec, view: &View, cull: CullSpec) -> RenderSpec {
+    RenderSpec {
+        engine,
+        width: view.size.0,
+        height: view.size.1,
+        band: view.size.1,
+        mode: ModeSpec::Dashed,
+        cull,
+        ..RenderSpec::default()
+    }
+}
+
+/// Every engine of view `k` against the reference: the failures.
+fn run_view(name: &str, mesh: &MeshData, cull: CullSpec, k: usize, view: &View) -> Vec<String> {
+    let proj = match view.camera.projection {
+        ProjectionSpec::Perspective { .. } => "persp",
+        ProjectionSpec::Orthographic { .. } => "ortho",
+    };
+    let label = |e: EngineSpec| {
+        format!(
+            "{name} view {k} {proj} {}x{} {}",
+            view.size.0,
+            view.size.1,
+            e.name()
+        )
+    };
+    let rf = match reference_frame(mesh, &view.camera, &spec(EngineSpec::ZBuffer, view, cull)) {
+        Ok(rf) => rf,
+        Err(e) => return vec![format!("{}: reference: {e}", label(EngineSpec::ZBuffer))],
+    };
+    let mut engines = vec![EngineSpec::Fast, EngineSpec::ZBuffer];
+    if k % 8 == 0 {
+        engines.extend([
+            EngineSpec::Scanline,
+            EngineSpec::CodeFill,
+            EngineSpec::Warnock,
+            EngineSpec::Raycast,
+        ]);
+    }
+    let mut failures = Vec::new();
+    for engine in engines {
+        let frame = match render_frame(mesh, &view.camera, &spec(engine, view, cull)) {
+            Ok(f) => f,
+            Err(e) => {
+                failures.push(format!("{}: {e}", label(engine)));
+                continue;
+            }
+        };
+        let fast = engine == EngineSpec::Fast;
+        let line_pct = FAST_OVER
+            .iter()
+            .find(|(n, v, _)| fast && *n == name && *v == k)
+            .map_or(0.5, |o| o.2);
+        if let Err(e) = judge(&label(engine), &frame, &rf, !fast, line_pct) {
+            failures.push(format!("{e} [camera {:?}]", view.camera));
+        }
+    }
+    failures
+}
+
+fn env(name: &str, default: u64) -> u64 {
+    std::env::var(name)
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(default)
+}
+
+#[test]
+fn random_views_of_every_model_and_open_shape_are_within_the_limits() {
+    let count = env("PBUFFER_SWEEP_VIEWS", VIEWS as u64) as usize;
+    let mut rng = Rng::new(env("PBUFFER_SWEEP_SEED", SEED));
+    let start = Instant::now();
+    let jobs: Vec<(String, MeshData, CullSpec, Vec<View>)> = meshes()
+        .into_iter()
+        .map(|(name, mesh, cull)| {
+            let v = views(&mesh, count, &mut rng);
+            (name, mesh, cull, v)
+        })
+        .collect();
+    let work: Vec<(usize, usize)> = jobs
+        .iter()
+        .enumerate()
+        .flat_map(|(j, job)| (0..job.3.len()).map(move |k| (j, k)))
+        .collect();
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let failures = std::sync::Mutex::new(Vec::new());
+    std::thread::scope(|s| {
+        for _ in 0..2 {
+            s.spawn(|| loop {
+                let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                let Some(&(j, k)) = work.get(i) else { break };
+                let (name, mesh, cull, views) = &jobs[j];
+                let f = run_view(name, mesh, *cull, k, &views[k]);
+                failures.lock().unwrap().extend(f);
+            });
+        }
+    });
+    let failures = failures.into_inner().unwrap();
+    println!(
+        "random views: {} meshes x {count} views, {} frames judged, {} over the limits, {:.1} s",
+        jobs.len(),
+        work.len() * 2 + work.iter().filter(|(_, k)| k % 8 == 0).count() * 4,
+        failures.len(),
+        start.elapsed().as_secs_f64()
+    );
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// The sweep's verdict can fail: a real frame of the sweep, with one visible line
+/// pixel in 40 drawn hidden (as a silhouette hidden where its line steps a column
+/// would be) and a block of pixels showing the wrong face, fails it.
+#[test]
+fn self_test_a_frame_with_lines_and_faces_gone_wrong_fails_the_sweep() {
+    let (name, mesh, cull) = meshes().into_iter().find(|m| m.0 == "suzanne").unwrap();
+    let view = views(&mesh, 1, &mut Rng::new(SEED)).remove(0);
+    let rf = reference_frame(&mesh, &view.camera, &spec(EngineSpec::ZBuffer, &view, cull)).unwrap();
+    for engine in [EngineSpec::Fast, EngineSpec::ZBuffer] {
+        let exact = engine == EngineSpec::ZBuffer;
+        let frame = render_frame(&mesh, &view.camera, &spec(engine, &view, cull)).unwrap();
+        assert_eq!(
+            judge(&name, &frame, &rf, exact, 0.5),
+            Ok(()),
+            "the frame itself passes"
+        );
+        let mut lines = frame.clone();
+        lines
+            .lines
+            .iter_mut()
+            .filter(|p| **p == 1)
+            .step_by(40)
+            .for_each(|p| *p = 2);
+        assert!(
+            judge(&name, &lines, &rf, exact, 0.5).is_err(),
+            "{}: lines",
+            engine.name()
+        );
+        let mut faces = frame.clone();
+        let w = faces.width;
+        let (cx, cy) = (w / 2, faces.height / 2);
+        let other = faces.ids[cy * w + cx] % mesh.faces.len() as u32 + 1;
+        for y in cy - 3..cy + 3 {
+            for x in cx - 3..cx + 3 {
+                faces.ids[y * w + x] = other;
+            }
+        }
+        assert!(
+            judge(&name, &faces, &rf, exact, 0.5).is_err(),
+            "{}: faces",
+            engine.name()
+        );
+    }
+}
