@@ -17,26 +17,54 @@ pub fn render_frame(mesh: &MeshData, cam: &CameraSpec, spec: &RenderSpec) -> Res
     // f64 first (the same picture).
     let aspect = spec.width as f64 / spec.height.max(1) as f64;
     if let Some((mesh, cam)) = crate::origin::localised(mesh, cam, aspect) {
-        return render_local(&mesh, &cam, spec);
+        return render_local(&mesh, &cam, spec, false);
     }
-    render_local(mesh, cam, spec)
+    render_local(mesh, cam, spec, false)
 }
 
-fn render_local(mesh: &MeshData, cam: &CameraSpec, spec: &RenderSpec) -> Result<Frame, String> {
+/// The scan-line method (`spec.engine` must be `scanline`) with bit-sliced rows
+/// (`RowCodes::BitSliced`) in place of the crossings: not an engine of its own, since
+/// both row representations must draw the same frame; this draws the other one to
+/// check it (the fuzz property of `fuzz_properties.rs` compares them on random scenes).
+pub fn render_scanline_bit_sliced(
+    mesh: &MeshData,
+    cam: &CameraSpec,
+    spec: &RenderSpec,
+) -> Result<Frame, String> {
+    if spec.engine != EngineSpec::Scanline {
+        return Err(format!(
+            "bit-sliced rows of --engine {}",
+            spec.engine.name()
+        ));
+    }
+    let aspect = spec.width as f64 / spec.height.max(1) as f64;
+    if let Some((mesh, cam)) = crate::origin::localised(mesh, cam, aspect) {
+        return render_local(&mesh, &cam, spec, true);
+    }
+    render_local(mesh, cam, spec, true)
+}
+
+/// `sliced`: the scan-line method with bit-sliced rows.
+fn render_local(
+    mesh: &MeshData,
+    cam: &CameraSpec,
+    spec: &RenderSpec,
+    sliced: bool,
+) -> Result<Frame, String> {
     match spec.subpixel {
-        0 => render_s::<U0>(mesh, cam, spec),
-        1 => render_s::<U1>(mesh, cam, spec),
-        2 => render_s::<U2>(mesh, cam, spec),
-        3 => render_s::<U3>(mesh, cam, spec),
-        4 => render_s::<U4>(mesh, cam, spec),
-        5 => render_s::<U5>(mesh, cam, spec),
-        6 => render_s::<U6>(mesh, cam, spec),
-        7 => render_s::<U7>(mesh, cam, spec),
-        8 => render_s::<U8>(mesh, cam, spec),
-        9 => render_s::<U9>(mesh, cam, spec),
-        10 => render_s::<U10>(mesh, cam, spec),
-        11 => render_s::<U11>(mesh, cam, spec),
-        12 => render_s::<U12>(mesh, cam, spec),
+        0 => render_s::<U0>(mesh, cam, spec, sliced),
+        1 => render_s::<U1>(mesh, cam, spec, sliced),
+        2 => render_s::<U2>(mesh, cam, spec, sliced),
+        3 => render_s::<U3>(mesh, cam, spec, sliced),
+        4 => render_s::<U4>(mesh, cam, spec, sliced),
+        5 => render_s::<U5>(mesh, cam, spec, sliced),
+        6 => render_s::<U6>(mesh, cam, spec, sliced),
+        7 => render_s::<U7>(mesh, cam, spec, sliced),
+        8 => render_s::<U8>(mesh, cam, spec, sliced),
+        9 => render_s::<U9>(mesh, cam, spec, sliced),
+        10 => render_s::<U10>(mesh, cam, spec, sliced),
+        11 => render_s::<U11>(mesh, cam, spec, sliced),
+        12 => render_s::<U12>(mesh, cam, spec, sliced),
         s => Err(format!("--subpixel {s}: must be 0 to 12")),
     }
 }
@@ -45,13 +73,16 @@ fn render_s<Frac: LeEqU32>(
     mesh: &MeshData,
     cam: &CameraSpec,
     spec: &RenderSpec,
+    sliced: bool,
 ) -> Result<Frame, String> {
     if matches!(
         spec.engine,
         EngineSpec::CodeFill | EngineSpec::CodeFillCrossings | EngineSpec::Scanline
     ) {
-        return match render_code::<Frac, 4>(mesh, cam, spec) {
-            Err(e) if e.contains("surface code") => render_code::<Frac, 32>(mesh, cam, spec),
+        return match render_code::<Frac, 4>(mesh, cam, spec, sliced) {
+            Err(e) if e.contains("surface code") => {
+                render_code::<Frac, 32>(mesh, cam, spec, sliced)
+            }
             other => other,
         };
     }
@@ -117,26 +148,27 @@ fn render_sd<Frac: LeEqU32, D: Depth>(
 /// The code-fill engine: no depth buffer; ids for the band and its apron. `codefill`
 /// and `codefill-crossings` render in the depth order of a BSP tree built once for the
 /// mesh (its build is timed apart, its storage counted in the working RAM);
-/// `scanline` compares planes where faces overlap.
+/// `scanline` compares planes where faces overlap (`sliced`: with bit-sliced rows).
 fn render_code<Frac: LeEqU32, const WORDS: usize>(
     data: &MeshData,
     cam: &CameraSpec,
     spec: &RenderSpec,
+    sliced: bool,
 ) -> Result<Frame, String> {
     let mut storage = SceneStorage::new(data);
     let scene = storage.scene(cam, spec)?;
     if spec.engine == EngineSpec::Scanline {
-        return render_code_with::<Frac, WORDS>(&scene, None, spec);
+        return render_code_with::<Frac, WORDS>(&scene, None, spec, sliced);
     }
     match with_bsp(&scene.mesh, |tree, figures| {
-        render_code_with::<Frac, WORDS>(&scene, Some((tree, figures)), spec)
+        render_code_with::<Frac, WORDS>(&scene, Some((tree, figures)), spec, false)
     }) {
         Ok(frame) => frame,
         // A mesh whose tree would need more fragments than face ids can name: the
         // same engine without an order (planes where faces overlap), said aloud.
         Err(e) => {
             eprintln!("note: {e}; rendering with --engine scanline instead");
-            let mut frame = render_code_with::<Frac, WORDS>(&scene, None, spec)?;
+            let mut frame = render_code_with::<Frac, WORDS>(&scene, None, spec, false)?;
             frame.stats.push(("depth_order_fallback".into(), 1));
             Ok(frame)
         }
@@ -147,6 +179,7 @@ fn render_code_with<Frac: LeEqU32, const WORDS: usize>(
     scene: &FrameInputs<'_>,
     bsp: Option<(&BspTree<'_>, BspFigures)>,
     spec: &RenderSpec,
+    sliced_planes: bool,
 ) -> Result<Frame, String> {
     let FrameInputs {
         mesh,
@@ -164,7 +197,7 @@ fn render_code_with<Frac: LeEqU32, const WORDS: usize>(
     type Engine<F, const W: usize> = CodeFillRenderer<F, W, ACTIVE_FACES, ACTIVE_EDGES, POLY>;
     let mut renderer = Box::new(Engine::<Frac, WORDS>::new());
     // Bit-sliced rows: every pixel's code, up to WORDS words, and a bit per pixel.
-    let sliced = spec.engine == EngineSpec::CodeFill;
+    let sliced = spec.engine == EngineSpec::CodeFill || sliced_planes;
     let mut words = vec![
         0u32;
         if sliced {

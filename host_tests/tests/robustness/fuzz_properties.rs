@@ -47,6 +47,19 @@ fn render_cases() -> (usize, u64) {
     let cases = var("PBUFFER_FUZZ_SCENES").map_or(RENDER_CASES, |n| n as usize);
     (cases, var("PBUFFER_FUZZ_SEED").unwrap_or(0xF022_0000_0002))
 }
+
+/// `PBUFFER_FUZZ_ONLY=38470,40884`: render only these cases (each still derived from
+/// the seed and its index, every case before it generated and skipped) and print
+/// their jobs; to reproduce a failure of a long run.
+fn only_cases() -> Option<Vec<usize>> {
+    let list = std::env::var("PBUFFER_FUZZ_ONLY").ok()?;
+    Some(
+        list.split(',')
+            .filter_map(|c| c.trim().replace('_', "").parse().ok())
+            .collect(),
+    )
+}
+
 /// Mesh + camera cases of the error property.
 const ERROR_CASES: usize = 200_000;
 
@@ -304,6 +317,7 @@ fn bad_meshes_and_cameras_give_the_precise_error() {
 fn valid_scenes_never_panic_or_write_outside_the_target() {
     let t = Instant::now();
     let (cases, seed) = render_cases();
+    let only = only_cases();
     let mut rng = Rng::new(seed);
     let mut outcomes = BTreeMap::<String, usize>::new();
     let mut failures = Vec::new();
@@ -336,13 +350,9 @@ fn valid_scenes_never_panic_or_write_outside_the_target() {
         let mut weld = vec![0u32; m.vertices.len()];
         let mut scratch = vec![HalfEdgeRecord::default(); m.indices.len()];
         let mut store = vec![MeshEdge::default(); m.indices.len()];
-        let Ok(edges) = EdgeAdjacency::build(
-            &mesh,
-            rng.range(0.0, 180.0) as f32,
-            &mut weld,
-            &mut scratch,
-            &mut store,
-        ) else {
+        let crease = rng.range(0.0, 180.0) as f32;
+        let Ok(edges) = EdgeAdjacency::build(&mesh, crease, &mut weld, &mut scratch, &mut store)
+        else {
             failures.push(format!("case {case}: adjacency failed with enough storage"));
             continue;
         };
@@ -370,6 +380,15 @@ fn valid_scenes_never_panic_or_write_outside_the_target() {
             short: rng.chance(0.03),
         };
         let s = [0, 4, 12][rng.below(3) as usize];
+        if let Some(only) = &only {
+            if !only.contains(&case) {
+                continue;
+            }
+            println!(
+                "case {case}: {w}x{h} band {} short {} S={s} {:?} {:?} crease {crease}: {m:?} {c:?}",
+                job.band, job.short, job.settings.mode, job.settings.cull
+            );
+        }
         let mut sliced_vs_crossings: Vec<Option<u64>> = Vec::new();
         for engine in [
             Engine::Crossings,
@@ -461,6 +480,9 @@ fn valid_scenes_never_panic_or_write_outside_the_target() {
         failures.len(),
         &failures[..failures.len().min(5)]
     );
+    if only.is_some() {
+        return;
+    }
     for k in [
         "Z32 Ok",
         "Crossings CodeTooWide",

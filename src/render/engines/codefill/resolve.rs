@@ -104,9 +104,11 @@ impl<
     /// until the winner changes, found by bisection (two planes along a row cross
     /// at most once). A face that is not planar ([`ActiveFace::bend`]) takes the
     /// depth of its fan triangle at the pixel (with its plane's tie margin) where its
-    /// plane, off by up to its bend, could decide otherwise. Where one face is
-    /// nearer than the others by their ranges alone ([`nearest_by_range`]), no
-    /// depth is taken.
+    /// plane, off by up to its bend, could decide otherwise; a fan depth is
+    /// piecewise, so a run with such a face is decided pixel by pixel. Where one
+    /// face is nearer than the others by their ranges alone ([`nearest_by_range`]),
+    /// no depth is taken. Every pixel thus gets the same face however the run was
+    /// cut (the two row representations cut runs at different places).
     // Indexing: n < 8 = cover.len() before an insertion (checked), and i <= n.
     #[allow(clippy::indexing_slicing)]
     pub(super) fn resolve_overlap(
@@ -176,7 +178,16 @@ impl<
             let id = winner(x);
             let last = xb - 1;
             let mut end = xb;
-            if last > x && winner(last) != id {
+            if bent {
+                // A fan depth is piecewise (a fan triangle each, the nearest where
+                // they overlap): the winner can change more than once along the run,
+                // so each pixel is asked (bisection would depend on where the run
+                // was cut, and the two row representations cut runs apart).
+                end = x + 1;
+                while end < xb && winner(end) == id {
+                    end += 1;
+                }
+            } else if last > x && winner(last) != id {
                 let (mut lo, mut hi) = (x, last);
                 while hi - lo > 1 {
                     let mid = lo + (hi - lo) / 2;
