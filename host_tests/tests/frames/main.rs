@@ -18,4 +18,5 @@ mod non_planar_faces;
 mod open_mesh;
 mod pick;
 mod pipeline_vs_reference;
+mod scene_union;
 mod short_api;
