@@ -62,9 +62,8 @@ impl Pose {
     /// link on the one before it). The rotation and translation are composed in
     /// `f32`.
     pub fn then(&self, outer: &Pose) -> Pose {
-        let r = &outer.rows;
-        let col = |j: usize| [self.rows[0][j], self.rows[1][j], self.rows[2][j]];
-        let rows = [0, 1, 2].map(|i| [0, 1, 2].map(|j| dot(r[i], col(j))));
+        let columns = transpose(self.rows);
+        let rows = outer.rows.map(|r| columns.map(|c| dot(r, c)));
         Pose {
             rows,
             translation: outer.apply(self.translation),
@@ -91,8 +90,7 @@ impl Pose {
 
     /// A world direction in the mesh's own space: `R^T d`.
     fn turn_back(&self, d: [f32; 3]) -> [f32; 3] {
-        let [a, b, c] = self.rows;
-        [0, 1, 2].map(|j| a[j] * d[0] + b[j] * d[1] + c[j] * d[2])
+        transpose(self.rows).map(|column| dot(column, d))
     }
 
     /// The camera's `view` brought into the mesh's own space (`R^T (eye - t)`, or
@@ -112,6 +110,11 @@ impl Pose {
             },
         }
     }
+}
+
+/// Rows to columns.
+fn transpose([[a, b, c], [d, e, f], [g, h, i]]: [[f32; 3]; 3]) -> [[f32; 3]; 3] {
+    [[a, d, g], [b, e, h], [c, f, i]]
 }
 
 #[inline(always)]
