@@ -15,7 +15,7 @@ use pbuffer::{FrameRows, Pose, SceneDrawing};
 
 use crate::fast::Baked;
 use crate::frame::{CameraSpec, EngineSpec, Frame, MeshData, RenderSpec};
-use crate::setup::{Measured, SceneStorage};
+use crate::setup::{with_parts, Measured, PartSize, SceneStorage};
 
 /// One part of a scene: its mesh (as read, in its own space) and its pose.
 #[derive(Debug, Clone)]
@@ -115,14 +115,23 @@ pub fn union_obj(parts: &[Part]) -> String {
 
 /// Draws `parts` seen by `cam`: the default engine (fast, S = 4, dashes by the
 /// screen pattern) through the library's `SceneDrawing`; every other engine, and
-/// dashes along the edges, through the union mesh (what the frame means; there,
-/// vertices of two parts that coincide bit for bit weld).
+/// dashes along the edges, through the union mesh (what the frame means), its edges
+/// made part by part as the library's are (`setup::with_parts`: vertices of two
+/// parts that coincide bit for bit do not weld).
 pub fn render_scene(parts: &[Part], cam: &CameraSpec, spec: &RenderSpec) -> Result<Frame, String> {
     let library = spec.engine == EngineSpec::Fast
         && spec.subpixel == 4
         && spec.dashes == pbuffer::Dashes::Screen;
     if !library {
-        return crate::pipeline::render_frame(&union(parts), cam, spec);
+        let sizes: Vec<PartSize> = parts
+            .iter()
+            .map(|p| PartSize {
+                vertices: p.mesh.vertices.len(),
+                faces: p.mesh.faces.len(),
+            })
+            .collect();
+        let mesh = union(parts);
+        return with_parts(&sizes, || crate::pipeline::render_frame(&mesh, cam, spec));
     }
     // Room for large scenes: several megabytes, on the heap of a thread whose
     // stack can hold the drawing while it is made.

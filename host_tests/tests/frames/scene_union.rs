@@ -101,3 +101,58 @@ fn scene_through_poses_equals_the_union_baked_as_one_mesh() {
     }
     assert_eq!(compared, 48);
 }
+
+/// The number `name` in a frame's figures.
+fn figure(frame: &host_tests::frame::Frame, name: &str) -> u64 {
+    let found = frame.stats.iter().find(|(n, _)| n == name);
+    found
+        .map(|(_, v)| *v)
+        .unwrap_or_else(|| panic!("no figure {name}"))
+}
+
+/// Two cubes that touch face to face, their corners there equal bit for bit: as one
+/// mesh those corners weld and the four edges of the touching square are one edge
+/// each; as a scene every engine keeps each cube's edges, as the library does (the
+/// exact engines through the union, its edges made part by part).
+#[test]
+fn touching_parts_keep_their_own_edges_in_every_engine() {
+    let parts = vec![
+        Part {
+            mesh: cube(),
+            pose: Pose::IDENTITY,
+        },
+        Part {
+            mesh: cube(),
+            pose: Pose::translation([2.0, 0.0, 0.0]),
+        },
+    ];
+    let cam = CameraSpec {
+        eye: [4.0, 3.0, 7.0],
+        target: [1.0, 0.0, 0.0],
+        up: [0.0, 1.0, 0.0],
+        projection: ProjectionSpec::Perspective { fov_deg: 50.0 },
+        near: 0.1,
+        far: 100.0,
+    };
+    let posed = union(&parts);
+    let mut counts = Vec::new();
+    for engine in [EngineSpec::Fast, EngineSpec::ZBuffer, EngineSpec::Scanline] {
+        let spec = RenderSpec {
+            engine,
+            width: 160,
+            height: 120,
+            band: 120,
+            ..RenderSpec::default()
+        };
+        let scene = figure(&render_scene(&parts, &cam, &spec).unwrap(), "feature_edges");
+        let one = figure(&render_frame(&posed, &cam, &spec).unwrap(), "feature_edges");
+        // 12 edges a cube; welded, the touching square's 4 edges are 4, not 8.
+        assert_eq!(
+            (scene, one),
+            (24, 20),
+            "{engine:?}: scene, union as one mesh"
+        );
+        counts.push(scene);
+    }
+    assert_eq!(counts, [24, 24, 24]);
+}
