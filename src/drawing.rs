@@ -27,8 +27,8 @@ use embedded_graphics_core::pixelcolor::BinaryColor;
 use crate::error::need;
 use crate::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
 use crate::render::{
-    BakedMesh, CompactEdge, FacePlane, FastRenderer, FastVertex, FastWorkspace, FrameNeeds,
-    MonoPalette, Settings, Stats,
+    BakedMesh, CompactEdge, FacePlane, FaceViews, FastRenderer, FastVertex, FastWorkspace,
+    FrameNeeds, FrameProbe, MonoPalette, OneMesh, Settings, Stats,
 };
 use crate::subpixel::U4;
 use crate::Capacity;
@@ -160,6 +160,13 @@ impl<
             edges: adjacency.edges().len(),
         });
         Ok(())
+    }
+
+    /// The baked mesh, to draw elsewhere as well: as an instance of a
+    /// [`SceneDrawing`](crate::SceneDrawing), say. Nothing baked is
+    /// `Err(NothingBaked)`.
+    pub fn baked(&self) -> Result<BakedMesh<'_>, Error> {
+        baked_mesh(self.baked, &self.planes, &self.edges)
     }
 
     /// Draws the baked mesh seen by `camera` into `target`, whose bounding box is
@@ -333,7 +340,7 @@ impl<
 }
 
 /// [`Settings::default`], in a `const fn`.
-const DEFAULT_SETTINGS: Settings = Settings {
+pub(crate) const DEFAULT_SETTINGS: Settings = Settings {
     mode: crate::DrawMode::Dashed,
     cull: crate::Cull::Auto,
     pattern: crate::Pattern::PAPER,
@@ -341,14 +348,15 @@ const DEFAULT_SETTINGS: Settings = Settings {
 };
 
 /// Lines on.
-const DEFAULT_PALETTE: MonoPalette = MonoPalette {
+pub(crate) const DEFAULT_PALETTE: MonoPalette = MonoPalette {
     line: BinaryColor::On,
 };
 
 /// The buffers of one frame that grow with the mesh, and the engine: what a
-/// [`Drawing`] and a [`BakedDrawing`] share.
+/// [`Drawing`], a [`BakedDrawing`] and a [`SceneDrawing`](crate::SceneDrawing)
+/// share.
 #[derive(Debug)]
-struct FrameBuffers<
+pub(crate) struct FrameBuffers<
     const V: usize,
     const F: usize,
     const E: usize,
@@ -356,7 +364,9 @@ struct FrameBuffers<
     const LINES: usize,
 > {
     vertices: [FastVertex; V],
-    facing: [u32; F],
+    /// One word a face (the engine reads a bit a face): a scene sets the bits
+    /// before its frame.
+    pub(crate) facing: [u32; F],
     face_lists: [[u16; 2]; F],
     line_links: [u16; E],
     pool: [FastVertex; CLIPPED_CORNERS],
@@ -366,7 +376,7 @@ struct FrameBuffers<
 impl<const V: usize, const F: usize, const E: usize, const FACETS: usize, const LINES: usize>
     FrameBuffers<V, F, E, FACETS, LINES>
 {
-    const fn new() -> Self {
+    pub(crate) const fn new() -> Self {
         Self {
             vertices: [FastVertex::ZERO; V],
             facing: [0; F],
@@ -382,16 +392,41 @@ impl<const V: usize, const F: usize, const E: usize, const FACETS: usize, const 
         &mut self,
         mesh: &BakedMesh<'_>,
         camera: &Camera,
-        (settings, palette): (&Settings, &MonoPalette),
+        looks: (&Settings, &MonoPalette),
         rows: &mut FrameRows<W, H>,
         target: &mut D,
     ) -> Result<Stats, Error<D::Error>> {
         let mut sink = FillSolid::new(target).map_err(Error::widen)?;
+        let frame = (mesh, camera, looks);
+        self.draw_in(OneMesh, frame, rows, &mut sink, &mut (), &mut [])
+    }
+
+    /// One frame of `mesh` seen from `views` into `sink`, `probe` seeing each
+    /// finished row (`ids`, at least a row long, holds its face ids when the
+    /// probe is active).
+    pub(crate) fn draw_in<
+        Y: FaceViews,
+        K: SpanSink<Color = BinaryColor>,
+        R: FrameProbe,
+        const W: usize,
+        const H: usize,
+    >(
+        &mut self,
+        views: Y,
+        (mesh, camera, (settings, palette)): (&BakedMesh<'_>, &Camera, (&Settings, &MonoPalette)),
+        rows: &mut FrameRows<W, H>,
+        sink: &mut K,
+        probe: &mut R,
+        ids: &mut [u16],
+    ) -> Result<Stats, Error<K::Error>> {
         let viewport = sink.viewport();
         let (mut ws, engine) = self.workspace(rows, viewport).map_err(Error::widen)?;
-        let drawn = engine.render(mesh, camera, settings, &mut ws, palette, &mut sink, &mut ());
+        ws.ids = ids;
+        let drawn = engine.render_in(views, mesh, camera, settings, &mut ws, palette, sink, probe);
         // A full table: the frame's true need, counted without drawing.
-        drawn.map_err(|e| engine.with_true_need(e, mesh, camera, settings, &mut ws, viewport))
+        drawn.map_err(|e| {
+            engine.with_true_need_in(e, views, mesh, camera, settings, &mut ws, viewport)
+        })
     }
 
     /// What `mesh` seen by each of `cameras` in frames of `viewport` needs: the
@@ -405,15 +440,38 @@ impl<const V: usize, const F: usize, const E: usize, const FACETS: usize, const 
         rows: &mut FrameRows<W, H>,
         viewport: Viewport,
     ) -> Result<DrawingNeeds, Error> {
-        let (mut ws, engine) = self.workspace(rows, viewport)?;
         let mut frames = FrameNeeds::default();
         for camera in cameras {
-            let one = engine.needs(mesh, camera, settings, &mut ws, viewport)?;
+            let one = self.needs_in(OneMesh, mesh, camera, settings, rows, viewport)?;
             frames = frames.max(one);
         }
+        Ok(Self::sizes(mesh, frames, viewport))
+    }
+
+    /// What the frame of `mesh` seen from `views` by `camera` needs of the tables
+    /// the engine fills as it goes.
+    pub(crate) fn needs_in<Y: FaceViews, const W: usize, const H: usize>(
+        &mut self,
+        views: Y,
+        mesh: &BakedMesh<'_>,
+        camera: &Camera,
+        settings: &Settings,
+        rows: &mut FrameRows<W, H>,
+        viewport: Viewport,
+    ) -> Result<FrameNeeds, Error> {
+        let (mut ws, engine) = self.workspace(rows, viewport)?;
+        engine.needs_in(views, mesh, camera, settings, &mut ws, viewport)
+    }
+
+    /// The sizes `mesh` and the peaks `frames` of its views need.
+    pub(crate) fn sizes(
+        mesh: &BakedMesh<'_>,
+        frames: FrameNeeds,
+        viewport: Viewport,
+    ) -> DrawingNeeds {
         let inner = mesh.mesh();
         let width = usize::from(viewport.width);
-        Ok(DrawingNeeds {
+        DrawingNeeds {
             vertices: inner.vertices().len(),
             faces: inner.face_count(),
             edges: mesh.edges().len().max(inner.indices().len().div_ceil(2)),
@@ -422,7 +480,7 @@ impl<const V: usize, const F: usize, const E: usize, const FACETS: usize, const 
             clipped_corners: frames.clipped_corners,
             width,
             height: usize::from(viewport.height).max(2 * width.div_ceil(32)),
-        })
+        }
     }
 
     /// The engine and its workspace for a frame of `viewport` (`rows` must hold it).

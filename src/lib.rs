@@ -102,6 +102,7 @@ mod pattern;
 pub mod recommend;
 pub mod render;
 pub mod scan;
+pub mod scene;
 mod sort;
 mod span;
 mod vector;
@@ -124,6 +125,7 @@ pub use render::{
 };
 pub use scan::XorFiller;
 pub use scan::{FillRule, ScanConverter};
+pub use scene::{Pose, SceneDrawing};
 pub use span::{ContiguousRows, FillSolid, Span, SpanSink, ROW_SEGMENTS};
 
 /// The README's Rust blocks, compiled and run as doctests so that the guide cannot
@@ -159,5 +161,7 @@ pub mod conventions {}
 
 /// The names one frame needs: `use pbuffer::prelude::*;`.
 pub mod prelude {
-    pub use crate::{Camera, Capacity, DrawMode, Drawing, Error, FrameRows, Mesh, Settings};
+    pub use crate::{
+        Camera, Capacity, DrawMode, Drawing, Error, FrameRows, Mesh, Pose, SceneDrawing, Settings,
+    };
 }

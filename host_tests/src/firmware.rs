@@ -10,7 +10,7 @@ use pbuffer::render::{BakedMesh, CompactEdge, FacePlane};
 
 use crate::image::Look;
 
-pub use pbuffer_scenes::{instrument, scenes};
+pub use pbuffer_scenes::{arm, instances, instrument, scenes, shapes};
 
 use instrument::Frame;
 use scenes::{panel, PanelFastBuffers, PanelFastEngine};
@@ -125,6 +125,94 @@ impl Demo {
 impl Default for Demo {
     fn default() -> Self {
         Self::new()
+    }
+}
+
+/// A procedural part's arrays made ready as build.rs bakes them.
+pub fn bake_shape<const V: usize, const I: usize, const O: usize>(
+    shape: &shapes::Shape<V, I, O>,
+) -> Bake {
+    assert!(shape.is_full(), "the shape's sizes");
+    Bake::new(&shape.vertices, &shape.indices, &shape.offsets)
+}
+
+/// The robot-arm demo (`arm`): its four parts baked as build.rs bakes them.
+#[derive(Debug)]
+pub struct ArmDemo {
+    parts: [Bake; 4],
+}
+
+impl ArmDemo {
+    /// The parts baked: base, upper link, forearm, gripper.
+    pub fn new() -> Self {
+        Self {
+            parts: [
+                bake_shape(&arm::base()),
+                bake_shape(&arm::upper()),
+                bake_shape(&arm::forearm()),
+                bake_shape(&arm::gripper()),
+            ],
+        }
+    }
+
+    /// Frame `n` (`arm::draw`, as the firmware draws it; the scene assembled anew,
+    /// as the firmware assembles it once: the frame depends only on the poses).
+    pub fn frame(&self, n: u32) -> Box<Frame> {
+        let mut scene: Box<arm::ArmScene<'_>> = Box::new(pbuffer::SceneDrawing::new());
+        arm::add_parts(&mut scene, self.parts.each_ref().map(Bake::baked)).expect("the parts");
+        let mut rows = Box::new(arm::ArmRows::new());
+        let mut fb = Box::new(Frame::new());
+        arm::draw(&mut scene, &mut rows, n, &mut fb).expect("the arm frame draws");
+        fb
+    }
+}
+
+impl Default for ArmDemo {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// Which 128 x 64 panel demo: the instrument panel or the robot arm (the `instrument`
+/// PNG writer's and the `instrument-window`'s `--demo`).
+#[derive(Debug)]
+pub enum PanelDemo {
+    Instrument(Demo),
+    Arm(Box<ArmDemo>),
+}
+
+impl PanelDemo {
+    /// `instrument` or `arm`.
+    pub fn named(name: &str) -> Result<Self, String> {
+        match name {
+            "instrument" => Ok(Self::Instrument(Demo::new())),
+            "arm" => Ok(Self::Arm(Box::default())),
+            other => Err(format!("no demo '{other}' (instrument | arm)")),
+        }
+    }
+
+    /// Its name, as the firmware example's.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::Instrument(_) => "instrument",
+            Self::Arm(_) => "arm",
+        }
+    }
+
+    /// Frames of its animation.
+    pub fn frames(&self) -> u32 {
+        match self {
+            Self::Instrument(_) => instrument::FRAMES,
+            Self::Arm(_) => arm::FRAMES,
+        }
+    }
+
+    /// Frame `n`.
+    pub fn frame(&mut self, n: u32) -> Box<Frame> {
+        match self {
+            Self::Instrument(d) => d.frame(n),
+            Self::Arm(d) => d.frame(n),
+        }
     }
 }
 

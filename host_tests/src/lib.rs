@@ -43,6 +43,7 @@ pub mod measure;
 pub mod newell;
 pub mod pick;
 pub mod pipeline;
+pub mod posed;
 pub mod schemes;
 pub mod setup;
 

@@ -5,6 +5,7 @@
 //! the measured region ([`Measured`]). [`crate::pipeline`] picks the engine; every
 //! driver starts here.
 
+use std::cell::RefCell;
 use std::time::Instant;
 
 use embedded_graphics::pixelcolor::BinaryColor;
@@ -30,11 +31,48 @@ pub struct SceneStorage {
     pub adjacency: AdjacencyStorage,
 }
 
+thread_local! {
+    /// The parts of the meshes drawn on this thread, while [`with_parts`] runs.
+    static PARTS: RefCell<Option<Vec<PartSize>>> = const { RefCell::new(None) };
+}
+
+/// One part of a union mesh: its vertices and faces, which follow the part before it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PartSize {
+    pub vertices: usize,
+    pub faces: usize,
+}
+
+/// Runs `f` with every mesh it sets up ([`SceneStorage::new`]) taken as the union of
+/// `parts`, one after the other, when the sizes add up to the mesh's: its edges are
+/// then made per part (vertices weld only within a part, a crease or silhouette never
+/// joins two parts), as `pbuffer::scene` defines a scene's frame. So every engine,
+/// handed the union by `render_frame`, draws a scene's lines as the library's
+/// `SceneDrawing` does. A mesh of other sizes (a far scene whose huge faces were cut)
+/// is one mesh, as before. A thread-local rather than a parameter: every engine of
+/// the pipeline starts at `SceneStorage::new`, and a scene is the only caller.
+pub fn with_parts<R>(parts: &[PartSize], f: impl FnOnce() -> R) -> R {
+    struct Reset;
+    impl Drop for Reset {
+        fn drop(&mut self) {
+            PARTS.with(|p| p.borrow_mut().take());
+        }
+    }
+    PARTS.with(|p| *p.borrow_mut() = Some(parts.to_vec()));
+    let _reset = Reset;
+    f()
+}
+
 impl SceneStorage {
-    /// Storage for `data`.
+    /// Storage for `data` (as the union of parts inside [`with_parts`]).
     pub fn new(data: &MeshData) -> Self {
         let arrays = MeshArrays::new(data);
-        let adjacency = AdjacencyStorage::new(&arrays);
+        let mut adjacency = AdjacencyStorage::new(&arrays);
+        let parts = PARTS.with(|p| p.borrow().clone()).unwrap_or_default();
+        let sum = |f: fn(&PartSize) -> usize| parts.iter().map(f).sum::<usize>();
+        if sum(|p| p.vertices) == data.vertices.len() && sum(|p| p.faces) == data.faces.len() {
+            adjacency.parts = parts;
+        }
         let planar = vec![0; pbuffer::mesh::planar_words(arrays.offsets.len().saturating_sub(1))];
         Self {
             arrays,
@@ -356,11 +394,13 @@ impl MeshArrays {
 }
 
 /// Storage for building a mesh's edge adjacency: the weld map and half-edge records
-/// (needed only while building) and the edge list (kept for rendering).
+/// (needed only while building) and the edge list (kept for rendering); and the parts
+/// whose edges are made one by one (none: one mesh).
 pub struct AdjacencyStorage {
     pub weld: Vec<u32>,
     pub scratch: Vec<HalfEdgeRecord>,
     pub edges: Vec<MeshEdge>,
+    pub parts: Vec<PartSize>,
 }
 
 impl AdjacencyStorage {
@@ -370,15 +410,20 @@ impl AdjacencyStorage {
             weld: vec![0; arrays.vertices.len()],
             scratch: vec![HalfEdgeRecord::default(); arrays.indices.len()],
             edges: vec![MeshEdge::default(); arrays.indices.len()],
+            parts: Vec::new(),
         }
     }
 
-    /// Builds the adjacency of `mesh` with crease angle `crease_deg`.
+    /// Builds the adjacency of `mesh` with crease angle `crease_deg`: of each part
+    /// alone, the lists joined (`EdgeAdjacency::from_edges`), when it has parts.
     pub fn build<'s>(
         &'s mut self,
         mesh: &Mesh<'_>,
         crease_deg: f64,
     ) -> Result<EdgeAdjacency<'s>, String> {
+        if self.parts.len() > 1 {
+            return self.build_parts(mesh, crease_deg);
+        }
         EdgeAdjacency::build(
             mesh,
             crease_deg as f32,
@@ -387,6 +432,39 @@ impl AdjacencyStorage {
             &mut self.edges,
         )
         .map_err(|e| format!("adjacency: {e}"))
+    }
+
+    /// [`build`](Self::build) part by part: each part's faces and vertices as a mesh
+    /// of their own, its edges shifted to the union's numbers. The parts' vertices
+    /// come one after the other, so the joined list stays sorted by its ends.
+    fn build_parts<'s>(
+        &'s mut self,
+        mesh: &Mesh<'_>,
+        crease_deg: f64,
+    ) -> Result<EdgeAdjacency<'s>, String> {
+        let (all, offsets) = (mesh.indices(), mesh.face_offsets());
+        let (mut v0, mut f0, mut count) = (0usize, 0usize, 0usize);
+        for part in &self.parts {
+            let (c0, c1) = (offsets[f0] as usize, offsets[f0 + part.faces] as usize);
+            let vertices = &mesh.vertices()[v0..v0 + part.vertices];
+            let indices: Vec<u32> = all[c0..c1].iter().map(|&i| i - v0 as u32).collect();
+            let starts: Vec<u32> = offsets[f0..=f0 + part.faces]
+                .iter()
+                .map(|&o| o - c0 as u32)
+                .collect();
+            let one = Mesh::new(vertices, &indices, &starts).map_err(|e| format!("part: {e}"))?;
+            let (weld, scratch) = (&mut self.weld[..part.vertices], &mut self.scratch);
+            let edges = &mut self.edges[count..];
+            let built = EdgeAdjacency::build(&one, crease_deg as f32, weld, scratch, edges)
+                .map_err(|e| format!("adjacency: {e}"))?;
+            let made = built.edges().len();
+            for e in &mut self.edges[count..count + made] {
+                (e.a, e.b) = (e.a + v0 as u32, e.b + v0 as u32);
+                e.faces = e.faces.map(|f| f + f0 as u32);
+            }
+            (v0, f0, count) = (v0 + part.vertices, f0 + part.faces, count + made);
+        }
+        EdgeAdjacency::from_edges(mesh, &self.edges[..count]).map_err(|e| format!("adjacency: {e}"))
     }
 
     /// Bytes of the storage needed only while building (weld map, half-edge records).

@@ -148,6 +148,11 @@ pub enum Capacity {
     BspNodes,
     /// The stack of a BSP tree's traversal: its depth. Exact.
     BspStack,
+    /// Instances of a [`SceneDrawing`](crate::SceneDrawing): its `N`. Exact.
+    Instances,
+    /// Corner indices and face starts of a [`SceneDrawing`](crate::SceneDrawing)'s
+    /// union (its `C`): every instance's corners, plus its faces, plus one. Exact.
+    SceneCorners,
     /// A count past what a 32-bit index (or a BSP node id, 31 bits) can name: the
     /// mesh or its splits are too large. Exact.
     Index32,
@@ -201,6 +206,8 @@ impl Capacity {
             Self::BspNodes => "BSP nodes",
             Self::BspStack => "BSP stack",
             Self::Index32 => "32-bit indices",
+            Self::Instances => "scene instances (N)",
+            Self::SceneCorners => "scene corners and face starts (C)",
         }
     }
 }

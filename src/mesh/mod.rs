@@ -119,6 +119,26 @@ impl<'a> Mesh<'a> {
         Ok(mesh)
     }
 
+    /// The mesh of slices that [`new`](Self::new) accepted before with the same
+    /// indices and face starts, and reported `max_face_len` for, unchecked: a
+    /// scene assembles its union once and poses its positions every frame
+    /// (checking that they are finite as it goes).
+    pub(crate) fn assembled(
+        vertices: &'a [[f32; 3]],
+        indices: &'a [u32],
+        face_offsets: &'a [u32],
+        max_face_len: usize,
+        planar: &'a [u32],
+    ) -> Self {
+        Self {
+            vertices,
+            indices,
+            face_offsets,
+            max_face_len,
+            planar: Some(planar),
+        }
+    }
+
     /// This mesh, with which of its faces are planar kept in `bits` (bit `f % 32` of
     /// word `f / 32` set for a planar face), as [`order::planar_faces`] fills them:
     /// the renderers then read a bit where they would test a face with more than

@@ -31,6 +31,7 @@ use embedded_graphics_core::pixelcolor::BinaryColor;
 use heapless::Vec;
 
 pub use compose::{FrameProbe, MonoPalette, Palette, SolidPalette};
+pub(crate) use engines::{faces_view, FaceViews, InstanceViews, OneMesh};
 pub use engines::{
     BakedMesh, BakedSource, BvhNode, CodeFill, CodeFillRenderer, CodeWorkspace, CompactEdge,
     DashPhase, Depth, DepthOrder, FacePlane, Fast, FastRenderer, FastVertex, FastWorkspace,

@@ -1,6 +1,7 @@
 //! The firmware examples' frames, written once: the scenes and their cameras
 //! ([`scenes`]), the two on-chip baselines ([`painter`], [`plain`]), the
-//! instrument-panel demo ([`instrument`]), the frames on panel driver crates
+//! instrument-panel demo ([`instrument`]), the robot-arm demo ([`arm`]) and the
+//! cost of posed instances ([`instances`]) with their procedural parts ([`shapes`]), the frames on panel driver crates
 //! (`panels`, feature `panels`) and the OBJ converter (`obj`, feature `std`).
 //!
 //! `no_std`. The firmware (`examples/embedded`) and the host's checks (`host_tests`)
@@ -15,6 +16,8 @@
 #[cfg(feature = "std")]
 extern crate std;
 
+pub mod arm;
+pub mod instances;
 pub mod instrument;
 #[cfg(feature = "std")]
 pub mod obj;
@@ -23,3 +26,4 @@ pub mod painter;
 pub mod panels;
 pub mod plain;
 pub mod scenes;
+pub mod shapes;

@@ -1,6 +1,9 @@
-//! `instrument-window`: the instrument-panel demo (`examples/scenes/src/instrument.rs`,
-//! the bracket turning beside its label and turn angle, 128 x 64, 1 bpp) animated in an
-//! embedded-graphics-simulator window (SDL2), each frame drawn by the firmware's code.
+//! `instrument-window`: a 128 x 64, 1-bpp panel demo animated in an
+//! embedded-graphics-simulator window (SDL2), each frame drawn by the firmware's code:
+//! the instrument panel (`examples/scenes/src/instrument.rs`, the bracket turning beside
+//! its label and turn angle) or, with `--demo arm`, the robot arm
+//! (`examples/scenes/src/arm.rs`, its joints moving; the window titled
+//! `pbuffer arm demo`).
 //!
 //! ```text
 //! cargo run --release -p host_tests --features simulator --bin instrument-window -- [flags]
@@ -8,7 +11,8 @@
 //!
 //! Keys: Space pauses and resumes, Right and Left step one frame (and pause), Q or Escape
 //! quits. After each frame is on the screen it prints `frame N hash=HEX` (N in
-//! 0..36, the frame `instrument --frames N` draws; the FNV-1a 64 hash of the packed
+//! 0..36 for the instrument, 0..8 for the arm: the frame `instrument [--demo arm]
+//! --frames N` draws; the FNV-1a 64 hash of the packed
 //! frame, as the firmware prints it), and `paused frame N` when paused. Those lines are
 //! what `scripts/simulator-check` waits for before it takes a screenshot.
 //!
@@ -24,23 +28,23 @@ use embedded_graphics_simulator::sdl2::Keycode;
 use embedded_graphics_simulator::{
     BinaryColorTheme, OutputSettingsBuilder, SimulatorDisplay, SimulatorEvent, Window,
 };
-use host_tests::firmware::{instrument, scenes::fnv1a64, Demo};
+use host_tests::firmware::{instrument, scenes::fnv1a64, PanelDemo};
 use host_tests::image::Look;
 use host_tests::tools::cli::{one_line, parse_look};
-
-/// The window title; the screenshot check finds the window by it.
-const TITLE: &str = "pbuffer instrument demo";
 
 /// The flags of `instrument-window`.
 #[derive(Debug, Parser)]
 #[command(
     name = "instrument-window",
-    about = "The instrument-panel demo (128x64, 1 bpp) animated in a simulator window. \
+    about = "A panel demo (128x64, 1 bpp) animated in a simulator window. \
              Keys: Space pause/resume, Right/Left step, Q or Escape quit.",
     disable_version_flag = true,
     args_override_self = true
 )]
 struct Flags {
+    /// The demo: instrument | arm
+    #[arg(long, default_value = "instrument")]
+    demo: String,
     /// Each display pixel as an S x S block of the window (no pixel spacing)
     #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u16).range(1..=16))]
     scale: u16,
@@ -56,7 +60,7 @@ struct Flags {
 }
 
 /// Draws frame `n` into `display`; returns the line to print once it is shown.
-fn show(demo: &mut Demo, n: u32, display: &mut SimulatorDisplay<BinaryColor>) -> String {
+fn show(demo: &mut PanelDemo, n: u32, display: &mut SimulatorDisplay<BinaryColor>) -> String {
     let fb = demo.frame(n);
     let (w, h) = (instrument::WIDTH as u32, instrument::HEIGHT as u32);
     let pixels = (0..h).flat_map(|y| (0..w).map(move |x| (x, y)));
@@ -105,9 +109,12 @@ fn run(flags: Flags) -> Result<(), String> {
             color_on: Rgb888::new(on[0], on[1], on[2]),
         })
         .build();
-    let mut window = Window::new(TITLE, &settings);
+    let mut demo = PanelDemo::named(&flags.demo).map_err(|e| format!("--demo: {e}"))?;
+    let frames = demo.frames();
+    // The screenshot check finds the window by its title.
+    let title = format!("pbuffer {} demo", demo.name());
+    let mut window = Window::new(&title, &settings);
     window.set_max_fps(flags.fps);
-    let mut demo = Demo::new();
     let (mut n, mut paused) = (0u32, flags.paused);
     let mut pending = Some(show(&mut demo, n, &mut display));
     let mut stdout = std::io::stdout();
@@ -134,7 +141,7 @@ fn run(flags: Flags) -> Result<(), String> {
                         }
                     }
                     Keycode::RIGHT => (paused, step) = (true, Some(1)),
-                    Keycode::LEFT => (paused, step) = (true, Some(instrument::FRAMES - 1)),
+                    Keycode::LEFT => (paused, step) = (true, Some(frames - 1)),
                     _ => {}
                 },
                 _ => {}
@@ -144,7 +151,7 @@ fn run(flags: Flags) -> Result<(), String> {
             step = Some(1);
         }
         if let Some(k) = step {
-            n = (n + k) % instrument::FRAMES;
+            n = (n + k) % frames;
             pending = Some(show(&mut demo, n, &mut display));
         }
     }

@@ -1,13 +1,15 @@
-//! `instrument`: frames of the instrument-panel demo (`examples/scenes/src/instrument.rs`,
-//! the bracket turning beside its label and turn angle, 128 x 64, 1 bpp) drawn on the host
-//! with the firmware's code, written side by side as one PNG.
+//! `instrument`: frames of a 128 x 64, 1-bpp panel demo drawn on the host with the
+//! firmware's code, written side by side as one PNG: the instrument panel
+//! (`examples/scenes/src/instrument.rs`, the bracket turning beside its label and turn
+//! angle) or, with `--demo arm`, the robot arm (`examples/scenes/src/arm.rs`).
 //!
 //! ```text
 //! cargo run --release -p host_tests --bin instrument -- --frames 0,4,8 --out docs/instrument.png
+//! cargo run --release -p host_tests --bin instrument -- --demo arm --frames 0,7 --out docs/arm.png
 //! ```
 //!
-//! Prints `frame instrument N hash=HEX` for each frame (the FNV-1a 64 hash of the packed
-//! frame, as the firmware example `instrument` prints it). At `--scale 2` with one frame
+//! Prints `frame DEMO N hash=HEX` for each frame (the FNV-1a 64 hash of the packed
+//! frame, as the firmware example `instrument` or `arm` prints it). At `--scale 2` with one frame
 //! the PNG is pixel for pixel the `instrument-window` simulator window of the same look
 //! (`scripts/simulator-check` compares them). Exit status: 0 ok, 2 bad flags or an
 //! unwritable file.
@@ -16,7 +18,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Parser;
-use host_tests::firmware::{frames_rgb, instrument, scenes::fnv1a64, Demo};
+use host_tests::firmware::{frames_rgb, instrument, scenes::fnv1a64, PanelDemo};
 use host_tests::image::write_rgb_png;
 use host_tests::image::Look;
 use host_tests::tools::cli::{one_line, parse_look};
@@ -25,12 +27,15 @@ use host_tests::tools::cli::{one_line, parse_look};
 #[derive(Debug, Parser)]
 #[command(
     name = "instrument",
-    about = "Frames of the instrument-panel demo (128x64, 1 bpp) side by side in a PNG.",
+    about = "Frames of a panel demo (128x64, 1 bpp) side by side in a PNG.",
     disable_version_flag = true,
     args_override_self = true
 )]
 struct Flags {
-    /// Frame numbers, comma-separated (the part turns 10 degrees a frame)
+    /// The demo: instrument | arm
+    #[arg(long, default_value = "instrument")]
+    demo: String,
+    /// Frame numbers, comma-separated (instrument: the part turns 10 degrees a frame)
     #[arg(long, value_delimiter = ',', default_value = "0")]
     frames: Vec<u32>,
     /// Each display pixel as an S x S block (from 3 up with a faint pixel grid)
@@ -59,10 +64,17 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    let mut demo = Demo::new();
+    let mut demo = match PanelDemo::named(&flags.demo) {
+        Ok(d) => d,
+        Err(e) => {
+            eprintln!("instrument: --demo: {e}");
+            return ExitCode::from(2);
+        }
+    };
     let frames: Vec<_> = flags.frames.iter().map(|&n| demo.frame(n)).collect();
     for (n, fb) in flags.frames.iter().zip(&frames) {
-        println!("frame instrument {n} hash={:016x}", fnv1a64(fb.as_bytes()));
+        let name = demo.name();
+        println!("frame {name} {n} hash={:016x}", fnv1a64(fb.as_bytes()));
     }
     if let Some(path) = &flags.out {
         let refs: Vec<&instrument::Frame> = frames.iter().map(|f| &**f).collect();

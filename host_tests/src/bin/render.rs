@@ -1,4 +1,5 @@
-//! `render`: draws a Wavefront OBJ model as a line drawing with dashed hidden lines (or
+//! `render`: draws a Wavefront OBJ model, or a `.scene` of posed parts
+//! (`host_tests::posed`), as a line drawing with dashed hidden lines (or
 //! the other modes) through the library's 3-D pipeline
 //! (`host_tests::pipeline::render_frame`), and writes the picture and the
 //! machine-readable outputs of ../shared/CONVENTIONS.md.
@@ -27,6 +28,7 @@ use host_tests::image::Look;
 use host_tests::image::{fnv1a64, packed_pixel, packed_stride, write_rgb_png};
 use host_tests::obj::{load_scene, workspace_root};
 use host_tests::pipeline::render_frame;
+use host_tests::posed::{load_scene_file, render_scene, union, union_obj, Part};
 use host_tests::schemes::{render_scheme, SchemeError, SchemeSpec};
 use host_tests::tools::cli::{help, parse_args, Options};
 
@@ -45,6 +47,7 @@ fn check_output_dirs(o: &Options) -> Result<(), Fail> {
         ("--ids", &o.ids),
         ("--lines", &o.lines),
         ("--grey", &o.grey),
+        ("--dump-obj", &o.dump_obj),
     ];
     for (flag, path) in outputs {
         let Some(dir) = path.as_deref().and_then(Path::parent) else {
@@ -159,8 +162,31 @@ fn run() -> Result<(), Fail> {
     }
     check_output_dirs(&o)?;
 
-    // The scene.
-    let (mesh, scene_name) = load_scene(o.scene.as_deref()).map_err(bad)?;
+    // The scene: one model, or posed parts whose union the frame means.
+    let is_parts = o
+        .scene
+        .as_deref()
+        .is_some_and(|p| p.extension().is_some_and(|e| e == "scene"));
+    let (parts, mesh, scene_name) = match o.scene.as_deref() {
+        Some(p) if is_parts => {
+            let parts = load_scene_file(p).map_err(bad)?;
+            let mesh = union(&parts);
+            (Some(parts), mesh, p.display().to_string())
+        }
+        other => {
+            let (mesh, name) = load_scene(other).map_err(bad)?;
+            (None, mesh, name)
+        }
+    };
+    if let Some(p) = &o.dump_obj {
+        let parts = parts.clone().unwrap_or_else(|| {
+            vec![Part {
+                mesh: mesh.clone(),
+                pose: pbuffer::Pose::IDENTITY,
+            }]
+        });
+        write_file("--dump-obj", p, union_obj(&parts).as_bytes())?;
+    }
     if o.ids.is_some() && mesh.faces.len() > 65_535 {
         return Err(bad(format!(
             "--ids: {scene_name} has {} faces; a 16-bit id image holds at most 65535",
@@ -172,7 +198,12 @@ fn run() -> Result<(), Fail> {
     // The frame.
     let t = Instant::now();
     let frame = if o.scheme == SchemeSpec::Priority {
-        render_frame(&mesh, &camera, &o.spec).map_err(|e| {
+        let drawn = match &parts {
+            // The default engine draws the parts through the library's scene.
+            Some(parts) => render_scene(parts, &camera, &o.spec),
+            None => render_frame(&mesh, &camera, &o.spec),
+        };
+        drawn.map_err(|e| {
             // A depth sort that cannot settle is a rendering failure of valid input
             // (exit 1); the pipeline's other errors are about the input (exit 2).
             let msg = format!("{scene_name}: {e}");
@@ -255,7 +286,8 @@ fn run() -> Result<(), Fail> {
         || o.ids.is_some()
         || o.lines.is_some()
         || o.pick.is_some()
-        || o.grey.is_some();
+        || o.grey.is_some()
+        || o.dump_obj.is_some();
     if o.stats || !asked_other {
         text += &format!("scene: {scene_name}\n");
         text += &format!("size: {w}x{h}\n");

@@ -15,7 +15,7 @@
 
 use pbuffer_scenes::{obj, painter, plain, scenes};
 
-use host_tests::firmware::{instrument, Bake, Demo};
+use host_tests::firmware::{arm, bake_shape, instances, instrument, ArmDemo, Bake, Demo};
 use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
 use pbuffer::render::storage_rows;
 use pbuffer::{packed_len, DrawMode, PackedFramebuffer, Pattern};
@@ -211,8 +211,45 @@ fn firmware_example_frames() {
                 let lit = print("instrument", n, fb.as_bytes());
                 assert!(lit > 300, "instrument {n}: {lit} pixels");
             }
+            // In the same test: a second test's progress dot would land at the start
+            // of a frame line that scripts/firmware greps for.
+            scene_example_frames();
         })
         .expect("spawn")
         .join()
         .expect("the frames render");
+}
+
+/// The robot-arm demo (four posed parts, `SceneDrawing`) and the instances example:
+/// each grid as one mesh and as instances, the same frame.
+fn scene_example_frames() {
+    let demo = ArmDemo::new();
+    for n in 0..arm::FRAMES {
+        let fb = demo.frame(n);
+        let lit = print("arm", n, fb.as_bytes());
+        assert!(lit > 300, "arm {n}: {lit} pixels");
+    }
+    let part = bake_shape(&instances::part());
+    let grids = [
+        bake_shape(&instances::grid::<24, 72, 17>(1)),
+        bake_shape(&instances::grid::<96, 288, 65>(4)),
+        bake_shape(&instances::grid::<384, 1152, 257>(16)),
+    ];
+    let mut union: Box<instances::UnionDrawing<'_>> = Box::new(pbuffer::BakedDrawing::new());
+    let mut scene: Box<instances::InstanceScene<'_>> = Box::new(pbuffer::SceneDrawing::new());
+    let mut rows = Box::new(instances::Rows::new());
+    for (n, grid) in instances::COUNTS.into_iter().zip(&grids) {
+        union.set_mesh(grid.baked()).expect("the grid");
+        instances::set_instances(&mut scene, part.baked(), n).expect("the instances");
+        for f in 0..instances::FRAMES {
+            let mut fb = Box::new(arm::Frame::new());
+            instances::draw_union(&mut union, &mut rows, n, f, &mut fb).expect("union");
+            let one = print(&format!("instances-union-{n}"), f, fb.as_bytes());
+            let union_bytes = fb.as_bytes().to_vec();
+            instances::draw_scene(&mut scene, &mut rows, n, f, &mut fb).expect("scene");
+            print(&format!("instances-scene-{n}"), f, fb.as_bytes());
+            assert!(one > 100, "instances {n} {f}: {one} pixels");
+            assert_eq!(union_bytes, fb.as_bytes(), "{n} instances, frame {f}");
+        }
+    }
 }

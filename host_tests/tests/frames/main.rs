@@ -1,6 +1,7 @@
 //! 3-D frames against the f64 references: every engine, the fast engine, grey, the whole
 //! pipeline, feature edges, open meshes, faces that are not planar, dashes along edges,
-//! picking, the code schemes, the depth orders (BSP, Newell) and the short API.
+//! picking, the code schemes, the depth orders (BSP, Newell), the short API, scenes of
+//! posed parts, depth precision and random views.
 //!
 //! One test binary; each module is one suite (`cargo test -p host_tests --test frames
 //! MODULE::`).
@@ -21,4 +22,5 @@ mod open_mesh;
 mod pick;
 mod pipeline_vs_reference;
 mod random_views;
+mod scene_union;
 mod short_api;

@@ -449,3 +449,115 @@ fn every_callgrind_exclusion_names_a_function_of_the_report_binary() {
     assert!(glob("*a::B as*C*d*", "<x::a::B as y::C>::d"));
     assert!(!glob("*a::B as*C*d*", "<x::a::B as y::E>::f"));
 }
+
+/// A scene of two tetrahedra, the second turned and moved.
+const TWO_TETRA: &str = "\
+# parts: PATH [tx ty tz [rx ry rz]]
+tetra.obj
+tetra.obj   1.5 0 0   0 90 30   # beside the first
+";
+
+#[test]
+fn a_scene_renders_and_its_dumped_union_renders_the_same() {
+    let d = Dir::new("scene");
+    d.file("tetra.obj", TETRA);
+    let scene = d.file("two.scene", TWO_TETRA);
+    let (ids, lines, union) = (d.path("ids.pgm"), d.path("lines.pgm"), d.path("union.obj"));
+    let (ids2, lines2) = (d.path("ids2.pgm"), d.path("lines2.pgm"));
+    let camera = [
+        "--eye",
+        "1,2,4",
+        "--target",
+        "0.8,0.3,0.3",
+        "--size",
+        "96x64",
+    ];
+    let mut args = vec![s(&scene), "--ids", s(&ids), "--lines", s(&lines)];
+    args.extend(["--dump-obj", s(&union), "--stats"]);
+    args.extend(camera);
+    let out = render(&args);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stats = String::from_utf8_lossy(&out.stdout);
+    assert!(stats.contains("faces: 8\n"), "{stats}");
+    let dumped = std::fs::read_to_string(&union).unwrap();
+    assert_eq!(dumped.lines().filter(|l| l.starts_with("v ")).count(), 8);
+    assert!(
+        dumped.contains("\nf 5 7 6\n"),
+        "faces in part order: {dumped}"
+    );
+    // The union as one OBJ: the same face ids and line pixels.
+    let mut again = vec![s(&union), "--ids", s(&ids2), "--lines", s(&lines2)];
+    again.extend(camera);
+    let out = render(&again);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let read = |p: &Path| std::fs::read(p).unwrap();
+    let ids = read(&ids);
+    assert_eq!(ids, read(&ids2), "--ids");
+    assert_eq!(read(&lines), read(&lines2), "--lines");
+    // Both parts are seen: face ids of the second (5..8, stored 1 + id) occur.
+    let (_, samples) = pgm(&ids);
+    let seen = |f: u16| {
+        samples
+            .chunks(2)
+            .any(|s| u16::from_be_bytes([s[0], s[1]]) == f + 1)
+    };
+    assert!(seen(0) || seen(1) || seen(2) || seen(3));
+    assert!((4..8).any(seen));
+}
+
+#[test]
+fn a_bad_scene_line_exits_2_naming_file_and_line() {
+    let d = Dir::new("bad-scene");
+    d.file("tetra.obj", TETRA);
+    for (text, line, what) in [
+        ("tetra.obj\ntetra.obj 1 2\n", 2, "found 2 numbers"),
+        (
+            "# ok\ntetra.obj 0 0 0 x 0 0\n",
+            2,
+            "`x` is not a finite number",
+        ),
+        ("tetra.obj\n\nmissing.obj 1 0 0\n", 3, "part missing.obj"),
+    ] {
+        let scene = d.file("bad.scene", text);
+        let out = render(&[s(&scene)]);
+        let needle = format!("{}:{line}: ", s(&scene));
+        let err = fails_with(&out, &needle);
+        assert!(err.contains(what), "{err}");
+    }
+    // A part's own OBJ error names the part's file and line too.
+    d.file("broken.obj", "v 0 0 0\nv 1 0\nf 1 2 3\n");
+    let scene = d.file("broken.scene", "broken.obj\n");
+    let err = fails_with(&render(&[s(&scene)]), &format!("{}:1: ", s(&scene)));
+    assert!(err.contains("broken.obj:2:"), "{err}");
+}
+
+#[test]
+fn pick_and_stats_work_on_a_scene_as_on_one_mesh() {
+    let d = Dir::new("scene-pick");
+    d.file("tetra.obj", TETRA);
+    let scene = d.file("two.scene", TWO_TETRA);
+    let out = render(&[
+        s(&scene),
+        "--pick",
+        "48,32",
+        "--eye",
+        "1,2,4",
+        "--size",
+        "96x64",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("pick_face: "), "{text}");
+}

@@ -67,6 +67,7 @@ mod warnock;
 mod zbuffer;
 
 pub use codefill::{CodeFillRenderer, CodeWorkspace, DepthOrder, RowCodes, Visibility};
+pub(crate) use fast::{faces_view, FaceViews, InstanceViews, OneMesh};
 pub use fast::{
     BakedMesh, BakedSource, CompactEdge, DashPhase, FacePlane, FastRenderer, FastVertex,
     FastWorkspace, FrameNeeds, FAST_MAX_SUBPIXEL_BITS, MAX_CHECKED_FACES, MAX_CORNERS,

@@ -39,7 +39,9 @@ pub struct Flags {
     /// Wavefront OBJ (v and f lines); without it: ../shared/models/suzanne.obj
     /// (or a built-in cube), written to target/render.png, stats printed;
     /// scene:NAME renders a procedural test scene (cube, boxes, icosphere,
-    /// torus, gear, frame, cyclic, coplanar)
+    /// torus, gear, frame, cyclic, coplanar); a .scene file lists posed
+    /// parts, one a line: PATH [tx ty tz [rx ry rz]] (path relative to the
+    /// file; degrees about the part's origin, x then y then z, then moved)
     #[arg(value_name = "SCENE.obj", value_parser = values::scene, verbatim_doc_comment)]
     pub scene: Option<PathBuf>,
     /// Scenes after the first (refused with a message that names them).
@@ -161,6 +163,11 @@ pub struct Flags {
     #[arg(long, value_name = "FILE.pgm", value_parser = values::file, allow_hyphen_values = true,
           help_heading = OUTPUTS, verbatim_doc_comment)]
     pub lines: Option<PathBuf>,
+    /// The scene's posed parts as one OBJ (world space,
+    /// faces in part order: the union its frame means)
+    #[arg(long = "dump-obj", value_name = "FILE.obj", value_parser = values::file,
+          allow_hyphen_values = true, help_heading = OUTPUTS, verbatim_doc_comment)]
+    pub dump_obj: Option<PathBuf>,
     /// 8-bit grey picture, face edges anti-aliased
     /// (Z-buffer engine, subpixel >= 2)
     #[arg(long, value_name = "FILE.png", value_parser = values::file, allow_hyphen_values = true,

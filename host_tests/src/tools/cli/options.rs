@@ -49,6 +49,8 @@ pub struct Options {
     pub lines: Option<PathBuf>,
     /// `--grey`: the anti-aliased grey picture (`host_tests::grey`).
     pub grey: Option<PathBuf>,
+    /// `--dump-obj`: the posed union of a scene (or the model) as one OBJ.
+    pub dump_obj: Option<PathBuf>,
     /// `--stats`: print the figures.
     pub stats: bool,
     /// `--hash`: print the frame's hash.
@@ -84,6 +86,7 @@ impl Default for Options {
             ids: None,
             lines: None,
             grey: None,
+            dump_obj: None,
             stats: false,
             hash: false,
             pick: None,

@@ -84,6 +84,7 @@ fn options(f: Flags) -> Result<Options, String> {
         ids: f.ids,
         lines: f.lines,
         grey: f.grey,
+        dump_obj: f.dump_obj,
         stats: f.stats,
         hash: f.hash,
         pick: f.pick,

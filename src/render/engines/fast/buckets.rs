@@ -18,8 +18,9 @@ pub(super) struct Lists {
 
 impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, FACETS, LINES> {
     /// Facing bits, and the per-row lists of drawn faces and feature lines.
-    pub(super) fn lists(
+    pub(super) fn lists<V: FaceViews>(
         &self,
+        views: V,
         baked: &BakedMesh<'_>,
         map: &ScreenMap,
         settings: &Settings,
@@ -51,7 +52,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             HoleBoxes::new(baked.edges(), ws.vertices, s)
         };
         for (f, plane) in baked.planes().iter().enumerate() {
-            let facing = faces_view(plane, &map.viewpoint);
+            let facing = views.facing(f, plane, &map.viewpoint, ws.facing);
             set_bit(ws.facing, f, facing);
             if cull && !facing {
                 continue;

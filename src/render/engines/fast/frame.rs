@@ -24,18 +24,39 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         sink: &mut K,
         probe: &mut R,
     ) -> Result<Stats, Error<K::Error>> {
+        self.render_in(OneMesh, baked, camera, settings, ws, palette, sink, probe)
+    }
+
+    /// [`render`](Self::render) with the faces seen from `views`: one mesh from
+    /// the camera, or a scene's instances each from its own space (whose facing
+    /// bits `ws.facing` holds already).
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub(crate) fn render_in<
+        V: FaceViews,
+        K: SpanSink,
+        P: Palette<Color = K::Color>,
+        R: FrameProbe,
+    >(
+        &mut self,
+        views: V,
+        baked: &BakedMesh<'_>,
+        camera: &Camera,
+        settings: &Settings,
+        ws: &mut FastWorkspace<'_>,
+        palette: &P,
+        sink: &mut K,
+        probe: &mut R,
+    ) -> Result<Stats, Error<K::Error>> {
         // Its own copy of the frame loop for dashes along the edges, so that
         // the screen pattern's has no dash work (measured: one loop for both
         // cost the screen pattern's frames 3 to 6 %).
+        let frame = (baked, camera, settings);
         match Dashing::of(settings) {
-            Some(d) => {
-                self.frame::<true, K, P, R>(d, baked, camera, settings, ws, palette, sink, probe)
-            }
+            Some(d) => self.frame::<true, V, K, P, R>(d, views, frame, ws, palette, sink, probe),
             None => {
                 let none = Dashing::NONE;
-                self.frame::<false, K, P, R>(
-                    none, baked, camera, settings, ws, palette, sink, probe,
-                )
+                self.frame::<false, V, K, P, R>(none, views, frame, ws, palette, sink, probe)
             }
         }
     }
@@ -44,12 +65,17 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
     /// `ALONG` (else it is not read).
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
-    fn frame<const ALONG: bool, K: SpanSink, P: Palette<Color = K::Color>, R: FrameProbe>(
+    fn frame<
+        const ALONG: bool,
+        V: FaceViews,
+        K: SpanSink,
+        P: Palette<Color = K::Color>,
+        R: FrameProbe,
+    >(
         &mut self,
         dashing: Dashing,
-        baked: &BakedMesh<'_>,
-        camera: &Camera,
-        settings: &Settings,
+        views: V,
+        (baked, camera, settings): (&BakedMesh<'_>, &Camera, &Settings),
         ws: &mut FastWorkspace<'_>,
         palette: &P,
         sink: &mut K,
@@ -65,7 +91,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         for (slot, p) in ws.vertices.iter_mut().zip(mesh.vertices()) {
             *slot = map.vertex(*p);
         }
-        let lists = self.lists(baked, &map, settings, ws, viewport);
+        let lists = self.lists(views, baked, &map, settings, ws, viewport);
         let (depth_step_near, depth_step_far) = map.depth_steps();
         let mut stats = Stats {
             faces: mesh.face_count() as u32,
@@ -105,7 +131,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             ..*settings
         };
         let mut pool_used = 0usize;
-        let mut shades = Shades::new(baked.planes(), map.viewpoint);
+        let mut shades = Shades::new(baked.planes(), map.viewpoint, views);
         let depth = settings.mode.needs_depth();
         let test = if depth { LineTest::Row } else { LineTest::None };
         for y in 0..height {

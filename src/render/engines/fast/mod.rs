@@ -65,6 +65,7 @@ mod polygon;
 mod row_out;
 mod step;
 mod view;
+mod views;
 
 use core::marker::PhantomData;
 use core::mem::size_of;
@@ -78,6 +79,7 @@ pub use facets::MAX_CORNERS;
 pub use holes::MAX_CHECKED_FACES;
 pub use needs::FrameNeeds;
 pub use view::FastVertex;
+pub(crate) use views::{FaceViews, InstanceViews, OneMesh};
 
 use crate::bits::{bit, set_bit};
 use crate::camera::{dot, Camera};
@@ -210,7 +212,7 @@ impl CornerSource for Source<'_, '_> {
 
 /// Does the face with `plane` face `view`? The test of `Mesh::faces_viewpoint`,
 /// on the baked normal and centroid.
-fn faces_view(plane: &FacePlane, view: &Viewpoint) -> bool {
+pub(crate) fn faces_view(plane: &FacePlane, view: &Viewpoint) -> bool {
     let toward = match view {
         Viewpoint::Perspective { eye } => [
             eye[0] - plane.centroid[0],

@@ -55,13 +55,26 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         ws: &mut FastWorkspace<'_>,
         viewport: Viewport,
     ) -> Result<FrameNeeds, Error> {
+        self.needs_in(OneMesh, baked, camera, settings, ws, viewport)
+    }
+
+    /// [`needs`](Self::needs) with the faces seen from `views`.
+    pub(crate) fn needs_in<V: FaceViews>(
+        &self,
+        views: V,
+        baked: &BakedMesh<'_>,
+        camera: &Camera,
+        settings: &Settings,
+        ws: &mut FastWorkspace<'_>,
+        viewport: Viewport,
+    ) -> Result<FrameNeeds, Error> {
         self.check(baked, viewport, ws, false, Dashing::of(settings).is_some())?;
         let mesh = baked.mesh();
         let map = ScreenMap::new(camera, viewport, Frac::U32, mesh.vertices());
         for (slot, p) in ws.vertices.iter_mut().zip(mesh.vertices()) {
             *slot = map.vertex(*p);
         }
-        Ok(self.count(baked, &map, settings, ws, viewport))
+        Ok(self.count(views, baked, &map, settings, ws, viewport))
     }
 
     /// `error` from [`render`](Self::render), with the frame's true need when it is
@@ -74,6 +87,23 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
     pub fn with_true_need<T>(
         &self,
         error: Error<T>,
+        baked: &BakedMesh<'_>,
+        camera: &Camera,
+        settings: &Settings,
+        ws: &mut FastWorkspace<'_>,
+        viewport: Viewport,
+    ) -> Error<T> {
+        self.with_true_need_in(error, OneMesh, baked, camera, settings, ws, viewport)
+    }
+
+    /// [`with_true_need`](Self::with_true_need) with the faces seen from `views`.
+    #[cold]
+    #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn with_true_need_in<T, V: FaceViews>(
+        &self,
+        error: Error<T>,
+        views: V,
         baked: &BakedMesh<'_>,
         camera: &Camera,
         settings: &Settings,
@@ -94,7 +124,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             Capacity::ClippedCorners => |n| n.clipped_corners,
             _ => return error,
         };
-        match self.needs(baked, camera, settings, ws, viewport) {
+        match self.needs_in(views, baked, camera, settings, ws, viewport) {
             Ok(frame) => Error::CapacityExceeded {
                 what,
                 needed: pick(frame).max(needed),
@@ -106,8 +136,9 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
 
     /// The counting passes: facets (and the pool) over the face lists, then lines
     /// over the line lists.
-    fn count(
+    fn count<V: FaceViews>(
         &self,
+        views: V,
         baked: &BakedMesh<'_>,
         map: &ScreenMap,
         settings: &Settings,
@@ -120,7 +151,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         // Each pass counts in the other kind's half of the list heads, so the lists
         // are built again for the second.
         if settings.mode.needs_depth() {
-            self.lists(baked, map, settings, ws, viewport);
+            self.lists(views, baked, map, settings, ws, viewport);
             let FastWorkspace {
                 vertices,
                 face_links,
@@ -135,7 +166,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             needs.clipped_corners = pool;
         }
         if settings.mode.draws_lines() {
-            self.lists(baked, map, settings, ws, viewport);
+            self.lists(views, baked, map, settings, ws, viewport);
             let FastWorkspace {
                 vertices,
                 line_links,

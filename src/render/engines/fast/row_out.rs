@@ -3,6 +3,7 @@
 //! colour.
 
 use super::baked::FacePlane;
+use super::views::FaceViews;
 use crate::camera::{dot, sqrt};
 use crate::mesh::Viewpoint;
 use crate::render::{DrawMode, Palette, Settings};
@@ -43,18 +44,20 @@ const KEPT_SHADES: usize = 32;
 
 /// The shading of a face (|cos| between its normal and the eye direction, 0..255),
 /// with the last shades asked kept (a square root each made, so kept).
-pub(super) struct Shades<'a> {
+pub(super) struct Shades<'a, V: FaceViews> {
     planes: &'a [FacePlane],
     viewpoint: Viewpoint,
+    views: V,
     kept: [(u16, u8); KEPT_SHADES],
 }
 
-impl<'a> Shades<'a> {
-    /// None kept yet.
-    pub fn new(planes: &'a [FacePlane], viewpoint: Viewpoint) -> Self {
+impl<'a, V: FaceViews> Shades<'a, V> {
+    /// None kept yet; face `f`'s plane is seen from `views.view_of(f, viewpoint)`.
+    pub fn new(planes: &'a [FacePlane], viewpoint: Viewpoint, views: V) -> Self {
         Self {
             planes,
             viewpoint,
+            views,
             kept: [(super::NONE, 0); KEPT_SHADES],
         }
     }
@@ -74,7 +77,8 @@ impl<'a> Shades<'a> {
         let n = plane.normal;
         let len = sqrt(dot(n, n));
         let shade = if len > 0.0 {
-            let d = self.viewpoint.direction_from(plane.centroid);
+            let view = self.views.view_of(face, &self.viewpoint);
+            let d = view.direction_from(plane.centroid);
             ((dot(n, d) / len).abs().min(1.0) * 255.0) as u8
         } else {
             0
@@ -102,7 +106,7 @@ pub(super) fn emit_row<K: SpanSink, P: Palette<Color = K::Color>>(
     visible: &mut [u32],
     hidden: &mut [u32],
     palette: &P,
-    shades: &mut Shades<'_>,
+    shades: &mut Shades<'_, impl FaceViews>,
     sink: &mut K,
 ) -> Result<u32, K::Error> {
     let FaceRow {
@@ -215,6 +219,7 @@ pub(super) fn emit_row<K: SpanSink, P: Palette<Color = K::Color>>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::render::engines::fast::views::OneMesh;
 
     /// Faces 1 and 33 share a kept slot: each is asked in turn, and each still
     /// gets its own shade (the one a fresh `Shades` makes).
@@ -230,10 +235,10 @@ mod tests {
         let view = Viewpoint::Orthographic {
             direction_to_eye: [0.0, 0.0, 1.0],
         };
-        let fresh = |face: u16| Shades::new(&planes, view).of(face);
+        let fresh = |face: u16| Shades::new(&planes, view, OneMesh).of(face);
         let (one, other) = (fresh(1), fresh(33));
         assert_ne!(one, other, "the two faces face the eye differently");
-        let mut shades = Shades::new(&planes, view);
+        let mut shades = Shades::new(&planes, view, OneMesh);
         for face in [1, 33, 33, 1, 1, 33] {
             let expected = if face == 1 { one } else { other };
             assert_eq!(shades.of(face), expected, "face {face}");
