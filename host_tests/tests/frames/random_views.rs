@@ -245,7 +245,7 @@ fn run_view(
         Err(e) => return vec![format!("{}: reference: {e}", label(EngineSpec::ZBuffer))],
     };
     let mut engines = vec![EngineSpec::Fast, EngineSpec::ZBuffer];
-    if k % 8 == 0 {
+    if k.is_multiple_of(8) {
         engines.extend([
             EngineSpec::Scanline,
             EngineSpec::CodeFill,
@@ -353,7 +353,7 @@ fn random_views_of_every_model_and_open_shape_are_within_the_limits() {
     println!(
         "random views: {} meshes x {count} views, {} frames judged, {} held by the ledger, {} failing, {:.1} s",
         jobs.len(),
-        work.len() * 2 + work.iter().filter(|(_, k)| k % 8 == 0).count() * 4,
+        work.len() * 2 + work.iter().filter(|(_, k)| k.is_multiple_of(8)).count() * 4,
         ledger.len(),
         failures.len(),
         start.elapsed().as_secs_f64()

@@ -410,14 +410,7 @@ fn hidden<const POLY: usize>(
     px: &EdgePixel,
     cache: &mut FaceCache<POLY>,
 ) -> bool {
-    let own = |id: u16| {
-        let f = usize::from(id - 1);
-        edge.faces
-            .iter()
-            .take(edge.face_count.min(2) as usize)
-            .any(|&g| g as usize == f)
-            || (edge.kind == EdgeKind::NonManifold && face_owns_edge(ctx.mesh, edge, f))
-    };
+    let own = |id: u16| owns(ctx, edge, id);
     let centre = |k: u16| (2 * i64::from(k) + 1) << ctx.s;
     // The neighbour on the side of the edge point (the minor axis of the edge).
     let (dx, dy) = (px.px - centre(px.x), px.py - centre(px.y));
@@ -475,10 +468,20 @@ fn hidden<const POLY: usize>(
             }
         }
     }
-    asked != [0, 0] && covered_nearer(ctx, vertices, drawn, edge, px, cache, &own, asked)
+    asked != [0, 0] && covered_nearer(ctx, vertices, drawn, edge, px, cache, asked)
 }
 
-/// Whether a drawn face other than the edge's own (`own`) and those already asked
+/// Whether face `id` (1 + its index) is one of `edge`'s own faces.
+fn owns(ctx: &FrameCtx<'_, '_>, edge: &MeshEdge, id: u16) -> bool {
+    let f = usize::from(id.saturating_sub(1));
+    edge.faces
+        .iter()
+        .take(edge.face_count.min(2) as usize)
+        .any(|&g| g as usize == f)
+        || (edge.kind == EdgeKind::NonManifold && face_owns_edge(ctx.mesh, edge, f))
+}
+
+/// Whether a drawn face other than the edge's own and those already asked
 /// (`asked`) covers the edge point of `px` and is nearer there: the exact answer
 /// where the faces nearest at the two pixel centres beside the point do not hold
 /// it (a face beside a silhouette, seen at the centre, ends before the edge). Rare
@@ -492,14 +495,13 @@ fn covered_nearer<const POLY: usize>(
     edge: &MeshEdge,
     px: &EdgePixel,
     cache: &mut FaceCache<POLY>,
-    own: &dyn Fn(u16) -> bool,
     asked: [u16; 2],
 ) -> bool {
     for f in 0..ctx.mesh.face_count().min(usize::from(u16::MAX)) {
         let id = (f + 1) as u16;
         if !bit(drawn, f)
             || asked.contains(&id)
-            || own(id)
+            || owns(ctx, edge, id)
             || !box_holds(ctx, vertices, f, px)
             || touches(ctx.mesh, edge, f)
         {
