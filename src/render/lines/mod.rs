@@ -457,7 +457,7 @@ fn hidden<const POLY: usize>(
         };
         let face = view(ctx, vertices, f, &slot.poly, plane);
         if sure || covers(&slot.poly, px.px, px.py) {
-            if across_collapsed_own_face(ctx, vertices, edge, f, px) {
+            if across_collapsed_own_face(ctx, vertices, edge, f, &slot.poly, px) {
                 return false;
             }
             return slot.bend.nearer(&face, px, (px.px, px.py), REACH_COVERING);
@@ -468,58 +468,7 @@ fn hidden<const POLY: usize>(
             }
         }
     }
-    asked != [0, 0] && covered_nearer(ctx, vertices, drawn, edge, px, cache, asked)
-}
-
-/// Whether face `id` (1 + its index) is one of `edge`'s own faces.
-fn owns(ctx: &FrameCtx<'_, '_>, edge: &MeshEdge, id: u16) -> bool {
-    let f = usize::from(id.saturating_sub(1));
-    edge.faces
-        .iter()
-        .take(edge.face_count.min(2) as usize)
-        .any(|&g| g as usize == f)
-        || (edge.kind == EdgeKind::NonManifold && face_owns_edge(ctx.mesh, edge, f))
-}
-
-/// Whether a drawn face other than the edge's own and those already asked
-/// (`asked`) covers the edge point of `px` and is nearer there: the exact answer
-/// where the faces nearest at the two pixel centres beside the point do not hold
-/// it (a face beside a silhouette, seen at the centre, ends before the edge). Rare
-/// (a few line pixels a frame), so every face whose corners' box holds the point
-/// is asked.
-#[inline(never)]
-fn covered_nearer<const POLY: usize>(
-    ctx: &FrameCtx<'_, '_>,
-    vertices: &[ProjectedVertex],
-    drawn: &[u32],
-    edge: &MeshEdge,
-    px: &EdgePixel,
-    cache: &mut FaceCache<POLY>,
-    asked: [u16; 2],
-) -> bool {
-    for f in 0..ctx.mesh.face_count().min(usize::from(u16::MAX)) {
-        let id = (f + 1) as u16;
-        if !bit(drawn, f)
-            || asked.contains(&id)
-            || owns(ctx, edge, id)
-            || !box_holds(ctx, vertices, f, px)
-            || touches(ctx.mesh, edge, f)
-        {
-            continue;
-        }
-        let slot = cache.get(ctx, vertices, drawn, id);
-        let Some(plane) = slot.plane.as_ref() else {
-            continue;
-        };
-        let face = view(ctx, vertices, f, &slot.poly, plane);
-        if covers(&slot.poly, px.px, px.py)
-            && !across_collapsed_own_face(ctx, vertices, edge, f, px)
-            && slot.bend.nearer(&face, px, (px.px, px.py), REACH_COVERING)
-        {
-            return true;
-        }
-    }
-    false
+    asked != [0, 0] && covered_nearer::<POLY>(ctx, vertices, drawn, edge, px, asked)
 }
 
 /// False when face `f`'s corners are all in view and their screen box misses the
@@ -543,6 +492,68 @@ fn box_holds(
         hi = [hi[0].max(x), hi[1].max(y)];
     }
     (lo[0]..=hi[0]).contains(&px.px) && (lo[1]..=hi[1]).contains(&px.py)
+}
+
+/// Whether face `id` (1 + its index) is one of `edge`'s own faces.
+#[inline]
+fn owns(ctx: &FrameCtx<'_, '_>, edge: &MeshEdge, id: u16) -> bool {
+    let f = usize::from(id.saturating_sub(1));
+    edge.faces
+        .iter()
+        .take(edge.face_count.min(2) as usize)
+        .any(|&g| g as usize == f)
+        || (edge.kind == EdgeKind::NonManifold && face_owns_edge(ctx.mesh, edge, f))
+}
+
+/// Whether a drawn face other than the edge's own and those already asked
+/// (`asked`) covers the edge point of `px` and is nearer there: the exact answer
+/// where the faces nearest at the two pixel centres beside the point do not hold
+/// it (a face beside a silhouette, seen at the centre, ends before the edge). Rare
+/// (113 of suzanne's 4,824 line pixels at 400x240), so every face whose corners'
+/// box holds the point is asked.
+#[inline(never)]
+fn covered_nearer<const POLY: usize>(
+    ctx: &FrameCtx<'_, '_>,
+    vertices: &[ProjectedVertex],
+    drawn: &[u32],
+    edge: &MeshEdge,
+    px: &EdgePixel,
+    asked: [u16; 2],
+) -> bool {
+    for f in 0..ctx.mesh.face_count().min(usize::from(u16::MAX)) {
+        let id = (f + 1) as u16;
+        if !bit(drawn, f)
+            || asked.contains(&id)
+            || !box_holds(ctx, vertices, f, px)
+            || owns(ctx, edge, id)
+            || touches(ctx.mesh, edge, f)
+        {
+            continue;
+        }
+        // Set up here, not in the cache: the faces at the two centres stay there
+        // for the next pixels, and a face that does not cover the point needs no
+        // plane.
+        let mut poly: Vec<ScreenVertex, POLY> = Vec::new();
+        if !face_polygon(ctx, vertices, f, &mut poly).unwrap_or(false)
+            || !covers(&poly, px.px, px.py)
+            || across_collapsed_own_face(ctx, vertices, edge, f, &poly, px)
+        {
+            continue;
+        }
+        let Some(plane) = DepthPlane::new(&poly, ctx.s) else {
+            continue;
+        };
+        let mut bend = Bend::of(ctx.mesh.face(f).len());
+        if bend.nearer(
+            &view(ctx, vertices, f, &poly, &plane),
+            px,
+            (px.px, px.py),
+            REACH_COVERING,
+        ) {
+            return true;
+        }
+    }
+    false
 }
 
 /// Face `f` with its polygon and plane, for [`Bend::nearer`].
@@ -607,8 +618,18 @@ fn across_collapsed_own_face(
     vertices: &[ProjectedVertex],
     edge: &MeshEdge,
     f: usize,
+    poly: &[ScreenVertex],
     px: &EdgePixel,
 ) -> bool {
+    // Most points lie well inside the face that hides them: its polygon on screen
+    // answers first, with no look at the mesh.
+    let sides = poly.iter().zip(poly.iter().cycle().skip(1));
+    if !sides
+        .into_iter()
+        .any(|(a, b)| near_segment(a, b, px.px, px.py, SNAP_REACH))
+    {
+        return false;
+    }
     let mesh = ctx.mesh;
     let key = |v: u32| mesh.position_bits(v);
     let corners = mesh.face(f);
@@ -652,7 +673,10 @@ fn outline(ctx: &FrameCtx<'_, '_>, edge: &MeshEdge) -> bool {
 }
 
 /// Whether point (`x`, `y`) (half sub-pixel units) lies within `reach` of segment
-/// `a`-`b` on screen.
+/// `a`-`b` on screen. Screen coordinates stay below 2^28 half units, so the cross
+/// product fits 64 bits; its square is compared with the segment's in `f32` (the
+/// same bits on the host and the target; a 128-bit square is a long library call
+/// on a Cortex-M4).
 fn near_segment(a: &ScreenVertex, b: &ScreenVertex, x: i64, y: i64, reach: i64) -> bool {
     let (ax, ay) = (2 * i64::from(a.x), 2 * i64::from(a.y));
     let (bx, by) = (2 * i64::from(b.x), 2 * i64::from(b.y));
@@ -663,13 +687,10 @@ fn near_segment(a: &ScreenVertex, b: &ScreenVertex, x: i64, y: i64, reach: i64) 
     if !inside_box {
         return false;
     }
-    let (dx, dy) = (i128::from(bx - ax), i128::from(by - ay));
-    let cross = dx * i128::from(y - ay) - dy * i128::from(x - ax);
-    let len2 = dx * dx + dy * dy;
-    let r = i128::from(reach);
-    if len2 == 0 {
-        let (ex, ey) = (i128::from(x - ax), i128::from(y - ay));
-        return ex * ex + ey * ey <= r * r;
-    }
-    cross * cross <= r * r * len2
+    let (dx, dy) = (bx - ax, by - ay);
+    let cross = dx
+        .saturating_mul(y - ay)
+        .saturating_sub(dy.saturating_mul(x - ax));
+    let (c, r, fx, fy) = (cross as f32, reach as f32, dx as f32, dy as f32);
+    c * c <= r * r * (fx * fx + fy * fy)
 }
