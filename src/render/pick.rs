@@ -7,12 +7,12 @@ use fixed::types::extra::LeEqU32;
 use heapless::Vec;
 
 use super::idpass::FrameInput;
-use super::lines::{edge_on_screen, walk_segment, Bend, REACH_COVERING};
+use super::lines::{edge_on_screen, owns, walk_segment, Bend, REACH_COVERING};
 use super::transform::{ProjectedVertex, ScreenVertex};
 use super::{begin_frame, bit, face_polygon, need, Settings, Stats};
 use crate::camera::Camera;
 use crate::geometry::Subpixel;
-use crate::mesh::{face_owns_edge, EdgeAdjacency, EdgeKind, Mesh};
+use crate::mesh::{EdgeAdjacency, Mesh};
 use crate::render::depth::coverage::{covers, covers_centre};
 use crate::render::depth::fan::FaceView;
 use crate::render::depth::fan::{fan_depth_at, takes_fan_depth};
@@ -121,29 +121,18 @@ pub fn pick<Frac: LeEqU32, const POLY: usize>(
             continue;
         };
         let mut point = None;
-        walk_segment(
-            &a,
-            &b,
-            s,
-            &ctx.view.depth_grid(),
-            viewport.width,
-            y..y + 1,
-            |px| {
-                if px.x == x && px.y == y {
-                    point = Some(px);
-                }
-            },
-        );
-        let Some(px) = point else { continue };
+        walk_segment(&a, &b, s, viewport.width, y..y + 1, |px| {
+            if px.x == x && px.y == y {
+                point = Some(px);
+            }
+        });
+        let Some(px) = point.map(|px| px.with_slack(&ctx.view.depth_grid())) else {
+            continue;
+        };
         let mut in_front = 0u16;
         if settings.mode != super::DrawMode::Wireframe {
             for f in 0..mesh.face_count() {
-                let own = edge
-                    .faces
-                    .iter()
-                    .take(edge.face_count.min(2) as usize)
-                    .any(|&g| g as usize == f)
-                    || (edge.kind == EdgeKind::NonManifold && face_owns_edge(mesh, edge, f));
+                let own = owns(mesh, edge, f);
                 if own || !bit(drawn, f) || !face_polygon(&ctx, vertices, f, &mut poly)? {
                     continue;
                 }

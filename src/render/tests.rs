@@ -244,7 +244,7 @@ fn convex_solids_never_draw_a_visible_edge_pixel_dashed() {
                     continue;
                 }
                 let (a, b) = edge_on_screen(&ctx, &cache, edge).unwrap();
-                walk_segment(&a, &b, 4, &Default::default(), 96, 0..64, |p| {
+                walk_segment(&a, &b, 4, 96, 0..64, |p| {
                     let i = usize::from(p.y) * 3 + usize::from(p.x) / 32;
                     let on = masks.visible[i] & (1 << (p.x % 32)) != 0;
                     assert!(

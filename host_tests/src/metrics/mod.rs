@@ -44,7 +44,9 @@ use crate::reference3d::RefFrame;
 
 pub use lines::compare_lines;
 pub use scene::{LineMetrics, SceneMetrics, SurfaceMetrics};
-pub use surfaces::{compare_surfaces, near_edge_mask, snapping_bound, unexplained_diffs};
+pub use surfaces::{
+    compare_surfaces, covered_away, near_edge_mask, snapping_bound, unexplained_diffs,
+};
 
 /// Limit of (e), the misclassified fraction.
 pub const MISCLASSIFIED_LIMIT: f64 = 0.005;

@@ -12,6 +12,17 @@ fn square(k: isize) -> Vec<(isize, isize)> {
         .collect()
 }
 
+/// The pixels the reference covers more than 1 px from every projected edge: the
+/// base of the approximate engine's limit on face-id differences away from edges.
+pub fn covered_away(rf: &RefFrame) -> usize {
+    let near = near_edge_mask(rf, 1.0);
+    rf.ids
+        .iter()
+        .zip(&near)
+        .filter(|(&id, &n)| id != 0 && !n)
+        .count()
+}
+
 /// Pixels whose centre is within `r` px of an edge of a drawn face's projected polygon.
 pub fn near_edge_mask(rf: &RefFrame, r: f64) -> Vec<bool> {
     let (w, h) = (rf.width, rf.height);

@@ -7,7 +7,7 @@
 //! prints the table.
 
 use host_tests::frame::{CameraSpec, EngineSpec, ModeSpec, ProjectionSpec, RenderSpec};
-use host_tests::metrics::{near_edge_mask, snapping_bound, unexplained_diffs};
+use host_tests::metrics::{covered_away, snapping_bound, unexplained_diffs};
 use host_tests::pipeline::render_frame;
 use host_tests::reference3d::reference_frame;
 use host_tests::tools::report::engines::{scene_names, spec};
@@ -111,16 +111,6 @@ fn fast_engine_is_within_the_accuracy_limits_on_every_scene() {
         "over the limits:\n{}",
         failures.join("\n")
     );
-}
-
-/// The pixels the reference covers more than 1 px from every projected edge.
-fn covered_away(rf: &host_tests::reference3d::RefFrame) -> usize {
-    let near = near_edge_mask(rf, 1.0);
-    rf.ids
-        .iter()
-        .zip(&near)
-        .filter(|(&id, &n)| id != 0 && !n)
-        .count()
 }
 
 /// Far differences, wrong faces and depth-order errors as a share of the pixels the

@@ -26,13 +26,14 @@ use std::time::Instant;
 
 use host_tests::fit::used_vertex_bounds;
 use host_tests::frame::{
-    CameraSpec, CullSpec, EngineSpec, Frame, MeshData, ModeSpec, ProjectionSpec, RenderSpec,
+    CameraSpec, CullSpec, EngineSpec, Frame, MeshData, ProjectionSpec, RenderSpec,
 };
-use host_tests::metrics::{compare, near_edge_mask};
+use host_tests::metrics::{compare, covered_away};
 use host_tests::pipeline::render_frame;
 use host_tests::random::Rng;
 use host_tests::reference3d::{reference_frame, RefFrame};
 use host_tests::shapes::{cup, open_cylinder};
+use host_tests::tools::report::engines::spec as report_spec;
 use host_tests::tools::report::{load_scene, MODELS};
 
 /// Views of each mesh, and the seed, unless the environment says otherwise.
@@ -118,16 +119,6 @@ fn views(mesh: &MeshData, count: usize, rng: &mut Rng) -> Vec<View> {
         .collect()
 }
 
-/// Pixels the reference covers more than 1 px from every projected edge.
-fn covered_away(rf: &RefFrame) -> usize {
-    let near = near_edge_mask(rf, 1.0);
-    rf.ids
-        .iter()
-        .zip(&near)
-        .filter(|(&id, &n)| id != 0 && !n)
-        .count()
-}
-
 /// What the sweep measures of one frame: holes; the face-id errors (the exact
 /// engines: wrong faces, depth-order errors and differences away from edges, a
 /// count; the approximate engine: the same as a per cent of the pixels covered
@@ -209,13 +200,8 @@ fn judge(label: &str, frame: &Frame, rf: &RefFrame, exact: bool) -> Result<(), S
 /// The render settings of a view: dashed, S = 4, full frame.
 fn spec(engine: EngineSpec, view: &View, cull: CullSpec) -> RenderSpec {
     RenderSpec {
-        engine,
-        width: view.size.0,
-        height: view.size.1,
-        band: view.size.1,
-        mode: ModeSpec::Dashed,
         cull,
-        ..RenderSpec::default()
+        ..report_spec(engine, view.size)
     }
 }
 

@@ -10,7 +10,7 @@ pub(crate) use bend::Bend;
 
 use super::transform::{DepthGrid, ProjectedVertex, ScreenVertex};
 use super::{bit, face_polygon, FrameCtx};
-use crate::mesh::{face_owns_edge, EdgeAdjacency, EdgeKind, MeshEdge};
+use crate::mesh::{face_owns_edge, EdgeAdjacency, EdgeKind, Mesh, MeshEdge};
 use crate::render::band::IdBand;
 use crate::render::depth::coverage::covers;
 use crate::render::depth::fan::FaceView;
@@ -85,16 +85,24 @@ pub(crate) struct EdgePixel {
     pub slack: u32,
 }
 
+impl EdgePixel {
+    /// The pixel with its nearness uncertainty on the frame's depth `grid`.
+    pub fn with_slack(self, grid: &DepthGrid) -> Self {
+        Self {
+            slack: grid.slack(self.q),
+            ..self
+        }
+    }
+}
+
 /// Calls `pixel` for each pixel of segment `a`-`b` in rows `top..end` and columns
 /// `0..width`: one pixel per pixel centre along the major axis (end points
-/// included), in the row or column that contains the edge point there; each with
-/// its nearness uncertainty on the frame's depth `grid`.
-#[allow(clippy::too_many_arguments)]
+/// included), in the row or column that contains the edge point there. Its
+/// `slack` is 0: the line test sets it ([`EdgePixel::with_slack`]) where it asks.
 pub(crate) fn walk_segment(
     a: &ScreenVertex,
     b: &ScreenVertex,
     s: u32,
-    grid: &DepthGrid,
     width: u16,
     rows: core::ops::Range<u16>,
     mut pixel: impl FnMut(EdgePixel),
@@ -170,7 +178,7 @@ pub(crate) fn walk_segment(
                 px,
                 py,
                 q: q as u32,
-                slack: grid.slack(q as u32),
+                slack: 0,
             });
         }
         v.advance();
@@ -239,6 +247,7 @@ pub(crate) fn line_pass<const POLY: usize>(
     } = band;
     let band: &IdBand<'_> = band;
     let hide = ctx.settings.mode.needs_depth();
+    let grid = ctx.view.depth_grid();
     // The last face tested for covering an edge point, with its polygon and plane.
     let mut cache = FaceCache::<POLY>::new();
     let all = edges.edges();
@@ -267,18 +276,13 @@ pub(crate) fn line_pass<const POLY: usize>(
                 continue;
             }
             let rows = band.top..band.top + band.rows;
-            walk_segment(
-                &a,
-                &b,
-                ctx.s,
-                &ctx.view.depth_grid(),
-                ctx.viewport.width,
-                rows,
-                |px| {
-                    let hidden = hide && hidden(ctx, vertices, drawn, edge, band, &px, &mut cache);
-                    masks.set(px.x, px.y - band.top, hidden);
-                },
-            );
+            walk_segment(&a, &b, ctx.s, ctx.viewport.width, rows, |px| {
+                let hidden = hide && {
+                    let px = px.with_slack(&grid);
+                    hidden(ctx, vertices, drawn, edge, band, &px, &mut cache)
+                };
+                masks.set(px.x, px.y - band.top, hidden);
+            });
         }
         // Out of view, or done with after this band.
         *word &= !done;
@@ -410,7 +414,7 @@ fn hidden<const POLY: usize>(
     px: &EdgePixel,
     cache: &mut FaceCache<POLY>,
 ) -> bool {
-    let own = |id: u16| owns(ctx, edge, id);
+    let own = |id: u16| owns(ctx.mesh, edge, usize::from(id - 1));
     let centre = |k: u16| (2 * i64::from(k) + 1) << ctx.s;
     // The neighbour on the side of the edge point (the minor axis of the edge).
     let (dx, dy) = (px.px - centre(px.x), px.py - centre(px.y));
@@ -494,15 +498,15 @@ fn box_holds(
     (lo[0]..=hi[0]).contains(&px.px) && (lo[1]..=hi[1]).contains(&px.py)
 }
 
-/// Whether face `id` (1 + its index) is one of `edge`'s own faces.
+/// Whether face `f` is one of `edge`'s own faces (for a non-manifold edge, any
+/// face that uses it).
 #[inline]
-fn owns(ctx: &FrameCtx<'_, '_>, edge: &MeshEdge, id: u16) -> bool {
-    let f = usize::from(id.saturating_sub(1));
+pub(crate) fn owns(mesh: &Mesh<'_>, edge: &MeshEdge, f: usize) -> bool {
     edge.faces
         .iter()
         .take(edge.face_count.min(2) as usize)
         .any(|&g| g as usize == f)
-        || (edge.kind == EdgeKind::NonManifold && face_owns_edge(ctx.mesh, edge, f))
+        || (edge.kind == EdgeKind::NonManifold && face_owns_edge(mesh, edge, f))
 }
 
 /// Whether a drawn face other than the edge's own and those already asked
@@ -525,7 +529,7 @@ fn covered_nearer<const POLY: usize>(
         if !bit(drawn, f)
             || asked.contains(&id)
             || !box_holds(ctx, vertices, f, px)
-            || owns(ctx, edge, id)
+            || owns(ctx.mesh, edge, f)
             || touches(ctx.mesh, edge, f)
         {
             continue;
@@ -600,7 +604,7 @@ const SNAP_REACH: i64 = 2;
 /// (around a silhouette's end) its depth there differs from the edge's by less than
 /// the snapping of both can tell (measured on suzanne from sixteen sides, where
 /// asking these faces too misses 10.8 px of visible length instead of 3.0 px).
-fn touches(mesh: &crate::mesh::Mesh<'_>, edge: &MeshEdge, f: usize) -> bool {
+fn touches(mesh: &Mesh<'_>, edge: &MeshEdge, f: usize) -> bool {
     let key = |v: u32| mesh.position_bits(v);
     let ends = [key(edge.a), key(edge.b)];
     mesh.face(f).iter().any(|&v| ends.contains(&key(v)))
