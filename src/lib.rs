@@ -63,7 +63,8 @@
 //!   Newell-Newell-Sancha depth sort, Warnock subdivision, BSP trees, the scan-line
 //!   method, ray casting ([`order`] and the engines of [`render`]).
 #![cfg_attr(not(feature = "std"), no_std)]
-#![forbid(unsafe_code)]
+// Unsafe only in the fenced assembly span kernels (render::engines::fast::facets::kernel).
+#![deny(unsafe_code)]
 #![deny(missing_docs, missing_debug_implementations)]
 // Panic-freedom made visible: no unchecked index, unwrap, expect or panic outside
 // tests. Each allowed index carries its bound proof where it is allowed.

@@ -41,6 +41,8 @@ pub use engines::{
     WarnockFace, WarnockRenderer, WarnockSizes, WarnockStorage, ZBuffer, ZBufferRenderer,
     FAST_MAX_SUBPIXEL_BITS, MAX_CHECKED_FACES, MAX_CORNERS, MAX_FAST_FACES, MAX_HOLES, NO_HOLE,
 };
+#[doc(hidden)]
+pub use engines::span_kernel_twin_mismatches;
 pub use idpass::IdWorkspace;
 pub use pick::{pick, Pick, PickWorkspace, PickedEdge};
 pub use transform::{ClipVertex, ProjectedVertex, ScreenVertex};

@@ -73,6 +73,8 @@ pub use fast::{
     FastWorkspace, FrameNeeds, FAST_MAX_SUBPIXEL_BITS, MAX_CHECKED_FACES, MAX_CORNERS,
     MAX_FAST_FACES, MAX_HOLES, NO_HOLE,
 };
+#[doc(hidden)]
+pub use fast::span_kernel_twin_mismatches;
 pub use painter::{PaintOrder, PainterRenderer};
 pub use raycast::{
     BvhNode, RayFace, RaycastFigures, RaycastRenderer, RaycastSizes, RaycastStorage,

@@ -94,10 +94,13 @@ pub(super) fn row_at(y: i32, s: u32) -> i32 {
 /// `2^-11` px of the exact one (the slope rounded to `2^-16` px a row, the start
 /// rounded in `f32`): a pixel centre closer than that to an edge may fall on the
 /// other side of it.
+///
+/// `repr(C)`, `x` then `dx`: the span kernels step it with one double-word load.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[repr(C)]
 pub(super) struct EdgeStep {
     pub x: i32,
-    dx: i32,
+    pub dx: i32,
     /// The row after its last.
     pub end: i32,
 }

@@ -14,12 +14,16 @@
 use heapless::Vec;
 
 use super::clip::CLIP_CORNERS;
-use super::depth_row::{cells, run};
+use super::depth_row::run;
 use super::planes::{det, plane, plane_through, steepest, tie};
 use super::step::{crossing, row_at, EdgeStep};
 use super::view::FastVertex;
 use crate::Capacity;
 use crate::Error;
+
+mod kernel;
+
+pub use kernel::twin_mismatches;
 
 /// Most corners of a face the fast engine draws without clipping; more is
 /// `CapacityExceeded` (for the even-odd path's crossings).
@@ -49,10 +53,15 @@ enum Layout {
     FirstRight,
 }
 
-/// One facet crossing the current row, 100 bytes: a face, or one fan triangle of
+/// One facet crossing the current row, 104 bytes: a face, or one fan triangle of
 /// a bent face, or a bent convex quad split at its diagonal `c0 c2` into two
 /// triangles with a plane each (so that a bent quad is one facet, not two).
+///
+/// `repr(C)`: the span kernels of `kernel` (assembly on the Cortex-M4) read and
+/// step the first fields at their `offset_of!` offsets, each stepped pair
+/// (`x, dx`; `drow, b`) with one double-word load.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[repr(C)]
 pub(super) struct Facet {
     /// Monotone: the two chains' current edges (`left` walks corners forward,
     /// `right` backward; either may be the left one on screen). Both are spent
@@ -61,22 +70,22 @@ pub(super) struct Facet {
     pub right: EdgeStep,
     /// A split quad's diagonal `c0 c2`, while `layout` splits.
     diag: EdgeStep,
-    /// Rows before this keep the layout and the chains: the fast path.
-    until: i32,
-    /// Depth per pixel right and per row down (16.16, wrapping), and at column 0
-    /// of the current row: the first plane, then the second.
-    a: i32,
-    b: i32,
+    /// Depth at column 0 of the current row and per row down, then per pixel
+    /// right (16.16, wrapping): the first plane, then the second.
     drow: u32,
-    a2: i32,
-    b2: i32,
+    b: i32,
     drow2: u32,
+    b2: i32,
+    a: i32,
+    a2: i32,
     /// Depths this close to the nearest so far are a tie (16.16).
     tie: u32,
-    /// The steepest depth change per pixel, whole depth units (for the line test).
-    slope: u16,
+    /// Rows before this keep the layout and the chains: the fast path.
+    until: i32,
     /// Its last row.
     pub last: i32,
+    /// The steepest depth change per pixel, whole depth units (for the line test).
+    slope: u16,
     face: u16,
     corners: Corners,
     /// The chains' lower corners' local indices, the bottom corner, the corners.
@@ -356,81 +365,9 @@ impl Facet {
         self.until = until;
     }
 
-    /// The span between the two chains' crossings, then both step a row and the
-    /// depth a row: the row loop's fast path, when [`holds`](Self::holds). The
-    /// layout picks an out-of-line copy with no field selected at run time.
-    #[inline(always)]
-    pub fn fill_span_row(&mut self, row: &mut [u32]) -> u32 {
-        // Each layout its own copy: no select of fields at run time.
-        match self.layout {
-            Layout::First => self.fill_one::<false>(row),
-            Layout::Second => self.fill_one::<true>(row),
-            Layout::FirstLeft => self.fill_split_row::<false>(row),
-            Layout::FirstRight => self.fill_split_row::<true>(row),
-        }
-    }
-
-    /// One span with the first plane (`SECOND`: the second). Out of line, so
-    /// that its few values stay in registers.
-    #[inline(never)]
-    fn fill_one<const SECOND: bool>(&mut self, row: &mut [u32]) -> u32 {
-        let (lx, rx) = (self.left.x, self.right.x);
-        let (d, a) = if SECOND {
-            (self.drow2, self.a2)
-        } else {
-            (self.drow, self.a)
-        };
-        self.left.next_row();
-        self.right.next_row();
-        self.step_planes();
-        let (l, r) = (lx >> 16, rx >> 16);
-        let id = 0xFFFF - u32::from(self.face);
-        run(row, l.min(r), l.max(r), d, a, id, self.tie)
-    }
-
-    /// A quad split at its diagonal: two spans, a plane each, the first plane's
-    /// on the left (`SWAP`: on the right). Out of line, apart from the one-plane
-    /// rows' registers.
-    #[inline(never)]
-    fn fill_split_row<const SWAP: bool>(&mut self, row: &mut [u32]) -> u32 {
-        let (l, r) = (self.left.pixel(), self.right.pixel());
-        let xd = self.diag.pixel();
-        let ((d, a), (d2, a2)) = if SWAP {
-            ((self.drow2, self.a2), (self.drow, self.a))
-        } else {
-            ((self.drow, self.a), (self.drow2, self.a2))
-        };
-        let (id, tie) = (0xFFFF - u32::from(self.face), self.tie);
-        self.diag.next_row();
-        self.left.next_row();
-        self.right.next_row();
-        self.step_planes();
-        // Both spans clamped to the row at once, then cut at the diagonal.
-        let x0 = l.min(r).max(0);
-        let x1 = l.max(r).min(row.len() as i32);
-        if x0 >= x1 {
-            return 0;
-        }
-        let xd = xd.clamp(x0, x1);
-        let (one, two) = row
-            .get_mut(x0 as usize..x1 as usize)
-            .unwrap_or_default()
-            .split_at_mut((xd - x0) as usize);
-        let spans = u32::from(!one.is_empty()) + u32::from(!two.is_empty());
-        cells(one, d.wrapping_add(a.wrapping_mul(x0) as u32), a, id, tie);
-        cells(
-            two,
-            d2.wrapping_add(a2.wrapping_mul(xd) as u32),
-            a2,
-            id,
-            tie,
-        );
-        spans
-    }
-
     /// Both planes one row down.
     #[inline(always)]
-    fn step_planes(&mut self) {
+    pub(super) fn step_planes(&mut self) {
         self.drow = self.drow.wrapping_add(self.b as u32);
         self.drow2 = self.drow2.wrapping_add(self.b2 as u32);
     }
