@@ -31,6 +31,8 @@ use embedded_graphics_core::pixelcolor::BinaryColor;
 use heapless::Vec;
 
 pub use compose::{FrameProbe, MonoPalette, Palette, SolidPalette};
+#[doc(hidden)]
+pub use engines::span_kernel_twin_mismatches;
 pub(crate) use engines::{faces_view, FaceViews, InstanceViews, OneMesh};
 pub use engines::{
     BakedMesh, BakedSource, BvhNode, CodeFill, CodeFillRenderer, CodeWorkspace, CompactEdge,
@@ -41,8 +43,6 @@ pub use engines::{
     WarnockFace, WarnockRenderer, WarnockSizes, WarnockStorage, ZBuffer, ZBufferRenderer,
     FAST_MAX_SUBPIXEL_BITS, MAX_CHECKED_FACES, MAX_CORNERS, MAX_FAST_FACES, MAX_HOLES, NO_HOLE,
 };
-#[doc(hidden)]
-pub use engines::span_kernel_twin_mismatches;
 pub use idpass::IdWorkspace;
 pub use pick::{pick, Pick, PickWorkspace, PickedEdge};
 pub use transform::{ClipVertex, ProjectedVertex, ScreenVertex};

@@ -67,14 +67,14 @@ mod warnock;
 mod zbuffer;
 
 pub use codefill::{CodeFillRenderer, CodeWorkspace, DepthOrder, RowCodes, Visibility};
+#[doc(hidden)]
+pub use fast::span_kernel_twin_mismatches;
 pub(crate) use fast::{faces_view, FaceViews, InstanceViews, OneMesh};
 pub use fast::{
     BakedMesh, BakedSource, CompactEdge, DashPhase, FacePlane, FastRenderer, FastVertex,
     FastWorkspace, FrameNeeds, FAST_MAX_SUBPIXEL_BITS, MAX_CHECKED_FACES, MAX_CORNERS,
     MAX_FAST_FACES, MAX_HOLES, NO_HOLE,
 };
-#[doc(hidden)]
-pub use fast::span_kernel_twin_mismatches;
 pub use painter::{PaintOrder, PainterRenderer};
 pub use raycast::{
     BvhNode, RayFace, RaycastFigures, RaycastRenderer, RaycastSizes, RaycastStorage,

@@ -75,8 +75,8 @@ use heapless::Vec;
 
 pub use baked::{BakedMesh, BakedSource, FacePlane, MAX_FAST_FACES};
 pub use edge::{CompactEdge, MAX_HOLES, NO_HOLE};
-pub use facets::MAX_CORNERS;
 pub use facets::twin_mismatches as span_kernel_twin_mismatches;
+pub use facets::MAX_CORNERS;
 pub use holes::MAX_CHECKED_FACES;
 pub use needs::FrameNeeds;
 pub use view::FastVertex;

@@ -161,42 +161,14 @@ mod thumb {
 /// Runs `rounds` random facet-rows through both forms of the span kernel (the
 /// assembly one where the target has it, else the portable one twice) and
 /// returns how many differed: in the row, the record, or the spans returned.
-/// Rows of `width` cells; records with spans partly outside the row, diagonals
-/// anywhere, every layout.
+/// Rows of `width` cells (at most 256); records with spans partly outside the
+/// row, diagonals anywhere, every layout.
 pub fn twin_mismatches(seed: u32, rounds: u32, width: usize) -> u32 {
-    const MOST: usize = 256;
+    let mut rng = Random(seed | 1);
     let width = width.min(MOST);
-    let mut rng = seed | 1;
-    let mut next = move || {
-        // xorshift32
-        rng ^= rng << 13;
-        rng ^= rng >> 17;
-        rng ^= rng << 5;
-        rng
-    };
     let mut bad = 0;
     for _ in 0..rounds {
-        let mut f = Facet::EMPTY;
-        let w = width as i32 + 64;
-        let mut x = || ((next() % w as u32) as i32 - 32) << 16 | (next() & 0xFFFF) as i32;
-        (f.left.x, f.right.x, f.diag.x) = (x(), x(), x());
-        let mut step = || (next() as i32) >> 12;
-        (f.left.dx, f.right.dx, f.diag.dx) = (step(), step(), step());
-        (f.drow, f.drow2) = (next(), next());
-        (f.b, f.b2, f.a, f.a2) = (next() as i32, next() as i32, next() as i32, next() as i32);
-        f.tie = next() >> 9;
-        f.face = next() as u16;
-        f.layout = match next() % 4 {
-            0 => Layout::First,
-            1 => Layout::Second,
-            2 => Layout::FirstLeft,
-            _ => Layout::FirstRight,
-        };
-        let mut row = [0u32; MOST];
-        for c in row.iter_mut() {
-            // Empty cells and cells near the spans' depths both.
-            *c = if next() % 4 == 0 { 0 } else { next() };
-        }
+        let (mut f, mut row) = rng.facet_row(width);
         let (mut f2, mut row2) = (f, row);
         let cells = row.get_mut(..width).unwrap_or_default();
         let cells2 = row2.get_mut(..width).unwrap_or_default();
@@ -207,20 +179,116 @@ pub fn twin_mismatches(seed: u32, rounds: u32, width: usize) -> u32 {
     bad
 }
 
+/// The widest row [`twin_mismatches`] draws (on the stack twice).
+const MOST: usize = 256;
+
+/// xorshift32.
+struct Random(u32);
+
+impl Random {
+    fn next(&mut self) -> u32 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 17;
+        self.0 ^= self.0 << 5;
+        self.0
+    }
+
+    /// A record and a row: every other one with flat planes and cells one off,
+    /// on or one under their entries (the compare's boundary).
+    fn facet_row(&mut self, width: usize) -> (Facet, [u32; MOST]) {
+        let mut f = Facet::EMPTY;
+        let w = width as u32 + 64;
+        let mut x = || ((self.next() % w) as i32 - 32) << 16 | (self.next() & 0xFFFF) as i32;
+        (f.left.x, f.right.x, f.diag.x) = (x(), x(), x());
+        let mut step = || (self.next() as i32) >> 12;
+        (f.left.dx, f.right.dx, f.diag.dx) = (step(), step(), step());
+        (f.drow, f.drow2) = (self.next(), self.next());
+        let mut word = || self.next() as i32;
+        (f.b, f.b2, f.a, f.a2) = (word(), word(), word(), word());
+        f.tie = self.next() >> 9;
+        f.face = self.next() as u16;
+        f.layout = match self.next() % 4 {
+            0 => Layout::First,
+            1 => Layout::Second,
+            2 => Layout::FirstLeft,
+            _ => Layout::FirstRight,
+        };
+        let close = self.next() % 2 == 0;
+        if close {
+            (f.a, f.a2, f.drow2) = (0, 0, f.drow);
+        }
+        let id = 0xFFFF - u32::from(f.face);
+        let entry = (f.drow.wrapping_sub(f.tie) & 0xFFFF_0000) | id;
+        let mut row = [0u32; MOST];
+        for c in row.iter_mut() {
+            *c = match self.next() % 4 {
+                0 => 0,
+                _ if close => entry.wrapping_add(self.next() % 3).wrapping_sub(1),
+                _ => self.next(),
+            };
+        }
+        (f, row)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
+    /// The kernel read cell by cell from its specification: the span between
+    /// the chains' pixels clamped to the row; left of the diagonal the first
+    /// plane (`FirstLeft`) or the second (`FirstRight`); a cell takes the entry
+    /// `(depth - tie) & 0xFFFF0000 | (0xFFFF - face)`, plus the tie, when greater.
+    fn cell_by_cell(f: &Facet, row: &mut [u32]) -> (Facet, u32) {
+        let (l, r, xd) = (f.left.x >> 16, f.right.x >> 16, f.diag.x >> 16);
+        let (x0, x1) = (l.min(r).max(0), l.max(r).min(row.len() as i32));
+        let split = matches!(f.layout, Layout::FirstLeft | Layout::FirstRight);
+        let xd = if x0 < x1 { xd.clamp(x0, x1) } else { xd };
+        let first = (f.drow, f.a);
+        let second = (f.drow2, f.a2);
+        for x in x0..x1 {
+            let (d, a) = match f.layout {
+                Layout::First => first,
+                Layout::Second => second,
+                Layout::FirstLeft if x < xd => first,
+                Layout::FirstLeft => second,
+                Layout::FirstRight if x < xd => second,
+                Layout::FirstRight => first,
+            };
+            let depth = d.wrapping_add(a.wrapping_mul(x) as u32).wrapping_sub(f.tie);
+            let entry = depth & 0xFFFF_0000 | (0xFFFF - u32::from(f.face));
+            let cell = &mut row[x as usize];
+            if entry > *cell {
+                *cell = entry.wrapping_add(f.tie);
+            }
+        }
+        let spans = match (x0 < x1, split) {
+            (false, _) => 0,
+            (true, false) => 1,
+            (true, true) => u32::from(x0 < xd) + u32::from(xd < x1),
+        };
+        let mut g = *f;
+        g.left.x = g.left.x.wrapping_add(g.left.dx);
+        g.right.x = g.right.x.wrapping_add(g.right.dx);
+        if split {
+            g.diag.x = g.diag.x.wrapping_add(g.diag.dx);
+        }
+        g.drow = g.drow.wrapping_add(g.b as u32);
+        g.drow2 = g.drow2.wrapping_add(g.b2 as u32);
+        (g, spans)
+    }
+
     #[test]
-    fn twin_check_finds_a_wrong_kernel() {
-        // Both forms are the portable one on the host: no mismatch...
-        assert_eq!(twin_mismatches(7, 2000, 40), 0);
-        // ...and the check itself sees a record that steps differently.
-        let mut f = Facet::EMPTY;
-        f.left.dx = 1 << 16;
-        let mut g = f;
-        let mut row = [0u32; 8];
-        g.fill_span_row_portable(&mut row);
-        assert_ne!(f, g);
+    fn the_portable_kernel_is_its_cell_by_cell_specification() {
+        let mut rng = Random(20261128);
+        for width in [1, 7, 40, 256] {
+            for _ in 0..3000 {
+                let (mut f, mut row) = rng.facet_row(width);
+                let mut expected = row;
+                let (g, spans) = cell_by_cell(&f, &mut expected[..width]);
+                assert_eq!(f.fill_span_row_portable(&mut row[..width]), spans);
+                assert_eq!((f, row), (g, expected));
+            }
+        }
     }
 }
