@@ -14,6 +14,8 @@ use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 use panic_semihosting as _;
 use pbuffer::render::span_kernel_twin_mismatches;
+// The examples crate: its defmt logger (the `defmt` build check) and memory layout.
+use pbuffer_examples as _;
 
 #[entry]
 fn main() -> ! {
