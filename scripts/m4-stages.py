@@ -14,10 +14,10 @@ STAGES = [
                 r'|semihosting|BakedMesh>::new|Mesh>::new|with_planar_faces|memcmp'),
     ('transform', r'ScreenMap>::new|ScreenMap>::vertex'),
     ('lines: set-up', r'::activate_line'),
-    ('lists', r'>::lists$'),
+    ('lists', r'>::lists(::<.*>)?$'),
     ('face activation', r'>::activate(_other|_clipped)?$|::push_facets$|facets::facet$'
                         r'|::push_with|::set_slope$'),
-    ('facet rows', r'ActiveFacets<\d+>>::fill_row|Facet>::'),
+    ('facet rows', r'ActiveFacets<\d+>>::fill_row|Facet>::|^pbuffer_fill_'),
     ('lines: pixels', r'line_row|ActiveLine>::'),
     ('rows out', r'emit_row|fill_mask|write_mask|Pattern>::word'),
     ('clears', r'clear_row|Framebuffer<.*>::clear$|memclr|memset'),
@@ -88,10 +88,32 @@ def chains(addrs):
     return result
 
 
+def symbols():
+    """(start, end, name) of the binary's functions, for code without line
+    information (the assembly span kernels)."""
+    out = subprocess.run(['arm-none-eabi-nm', '-S', binary], capture_output=True, text=True).stdout
+    syms = []
+    for line in out.splitlines():
+        parts = line.split()
+        if len(parts) == 4 and parts[2] in 'tT':
+            start = int(parts[0], 16) & ~1
+            syms.append((start, start + int(parts[1], 16), parts[3]))
+    return syms
+
+
+SYMS = symbols()
+
+
+def symbol(a):
+    return next((n for s, e, n in SYMS if s <= a < e), '??')
+
+
 per = executed()
 stage_of = {}
 totals = collections.Counter()
 for a, names in chains(sorted(per)).items():
+    if all(n == '??' for n in names):
+        names = [symbol(a)]
     stage = 'frame loop'
     for name in reversed(names):
         hit = next((s for s, pat in STAGES if re.search(pat, name)), None)
