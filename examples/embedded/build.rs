@@ -1,4 +1,8 @@
-//! Puts the repository's memory.x where cortex-m-rt's link.x finds it, and bakes the
+//! Puts the board's memory layout where cortex-m-rt's link.x finds it (as `memory.x`:
+//! the repository's `memory.x` for the mps2 boards, `memory-microbit.x` for
+//! `thumbv6m-none-eabi`), tells `fw` the board (`cfg(fw_board = ...)`: `mps2-an386` for
+//! `thumbv7em-none-eabihf`, `mps2-an385` for `thumbv7m-none-eabi`, `microbit` for
+//! `thumbv6m-none-eabi`), and bakes the
 //! firmware's meshes into `static`s kept in flash with `pbuffer::bake` (the edge list
 //! at 30 degrees, which faces are planar, the fast engine's per-mesh constants):
 //! `models/suzanne.obj` into `$OUT_DIR/suzanne.rs` (`SUZANNE_...`), and the panel
@@ -28,9 +32,17 @@ fn shape_to_rust<const V: usize, const I: usize, const O: usize>(
 
 fn main() {
     let out = PathBuf::from(env::var_os("OUT_DIR").unwrap());
-    fs::copy("../../memory.x", out.join("memory.x")).expect("copy ../../memory.x");
+    let target = env::var("TARGET").unwrap_or_default();
+    let (memory, board) = match target.as_str() {
+        "thumbv6m-none-eabi" => ("memory-microbit.x", "microbit"),
+        "thumbv7m-none-eabi" => ("../../memory.x", "mps2-an385"),
+        _ => ("../../memory.x", "mps2-an386"),
+    };
+    fs::copy(memory, out.join("memory.x")).unwrap_or_else(|e| panic!("copy {memory}: {e}"));
     println!("cargo:rustc-link-search={}", out.display());
-    for f in ["../../memory.x", "build.rs"] {
+    println!("cargo::rustc-check-cfg=cfg(fw_board, values(\"mps2-an386\", \"mps2-an385\", \"microbit\"))");
+    println!("cargo:rustc-cfg=fw_board=\"{board}\"");
+    for f in ["../../memory.x", "memory-microbit.x", "build.rs"] {
         println!("cargo:rerun-if-changed={f}");
     }
 

@@ -5,6 +5,10 @@
 //! frame EXAMPLE N hash=HEX instructions=COUNT
 //! example EXAMPLE ram=BYTES flash=BYTES stack=BYTES
 //! ```
+//!
+//! On the Cortex-M4 (`mps2-an386`) EXAMPLE is the example's name; the other cores add
+//! their own suffix ([`SUFFIX`]: `panel-m3` on the Cortex-M3, `mps2-an385`; `panel-m0` on
+//! the Cortex-M0, `microbit`), so that one run's lines stay apart.
 
 use core::ptr::{addr_of, read_volatile, write_volatile};
 
@@ -24,6 +28,27 @@ extern "C" {
     static __ebss: u8;
     static _stack_start: u8;
 }
+
+/// What the board's frame lines add to the example's name (build.rs sets `fw_board`).
+#[cfg(fw_board = "mps2-an386")]
+pub const SUFFIX: &str = "";
+/// What the board's frame lines add to the example's name (build.rs sets `fw_board`).
+#[cfg(fw_board = "mps2-an385")]
+pub const SUFFIX: &str = "-m3";
+/// What the board's frame lines add to the example's name (build.rs sets `fw_board`).
+#[cfg(fw_board = "microbit")]
+pub const SUFFIX: &str = "-m0";
+
+/// Instructions a SysTick tick (core clock) under `-icount shift=0`, where QEMU's clock
+/// advances 1 ns an instruction: the fraction (numerator, denominator) of 1 GHz over the
+/// board's SysTick clock. The mps2 boards clock the core at 25 MHz: 40 instructions a tick.
+#[cfg(any(fw_board = "mps2-an386", fw_board = "mps2-an385"))]
+const PER_TICK: (u32, u32) = (40, 1);
+/// Instructions a SysTick tick (core clock) under `-icount shift=0`, where QEMU's clock
+/// advances 1 ns an instruction: the fraction (numerator, denominator) of 1 GHz over the
+/// board's SysTick clock. The micro:bit's nRF51 runs at 16 MHz: 62.5 instructions a tick.
+#[cfg(fw_board = "microbit")]
+const PER_TICK: (u32, u32) = (125, 2);
 
 /// Bytes of stack painted below the current stack pointer.
 const PAINT: usize = 64 * 1024;
@@ -79,7 +104,8 @@ pub fn stack_peak() -> usize {
 }
 
 /// SysTick on the core clock, free running: with `-icount shift=0` it advances once per
-/// 40 instructions (../shared/FIRMWARE.md).
+/// 40 instructions on the mps2 boards (../shared/FIRMWARE.md), once per 62.5 on the
+/// micro:bit ([`PER_TICK`]).
 pub struct Counter {
     syst: SYST,
 }
@@ -94,7 +120,9 @@ impl Counter {
         Self { syst }
     }
 
-    /// Runs `f` and returns its result and the instructions it took (40 x ticks).
+    /// Runs `f` and returns its result and the instructions it took (ticks x
+    /// [`PER_TICK`], rounded down: 40 x ticks on the mps2 boards, 125 x ticks / 2 on the
+    /// micro:bit; at most 2^24 ticks, so the product fits in `u32`).
     pub fn count<R>(&mut self, f: impl FnOnce() -> R) -> (R, u32) {
         self.syst.clear_current();
         let _ = self.syst.has_wrapped(); // clears COUNTFLAG
@@ -104,7 +132,7 @@ impl Counter {
             !self.syst.has_wrapped(),
             "SysTick wrapped: measure in chunks"
         );
-        (r, ticks * 40)
+        (r, ticks * PER_TICK.0 / PER_TICK.1)
     }
 }
 
@@ -143,8 +171,9 @@ pub fn run(
     for n in 0..frames {
         let (hash, instructions) = draw(n, counter);
         hprintln!(
-            "frame {} {} hash={:016x} instructions={}",
+            "frame {}{} {} hash={:016x} instructions={}",
             name,
+            SUFFIX,
             n,
             hash,
             instructions
@@ -152,10 +181,11 @@ pub fn run(
     }
     let stack = stack_peak();
     let (ram, flash) = sizes();
-    hprintln!("boot {} stack={}", name, boot_stack);
+    hprintln!("boot {}{} stack={}", name, SUFFIX, boot_stack);
     hprintln!(
-        "example {} ram={} flash={} stack={}",
+        "example {}{} ram={} flash={} stack={}",
         name,
+        SUFFIX,
         ram,
         flash,
         stack
@@ -167,7 +197,7 @@ pub fn run(
 
 /// Reports an error and exits QEMU with failure.
 pub fn fail(name: &str, what: &dyn core::fmt::Debug) -> ! {
-    hprintln!("FAIL {}: {:?}", name, what);
+    hprintln!("FAIL {}{}: {:?}", name, SUFFIX, what);
     debug::exit(debug::EXIT_FAILURE);
     #[allow(clippy::empty_loop)]
     loop {}

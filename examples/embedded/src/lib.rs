@@ -1,10 +1,11 @@
-//! Firmware examples of pbuffer for a Cortex-M4 (QEMU `mps2-an386`): the suzanne model
-//! converted and baked at build time (`suzanne`), the panel's constants baked at build
-//! time (`panel_baked`), the robot arm's parts and the instance grids baked at build
-//! time (`arm_baked`, `grids`), and the measuring harness (`fw`). The frames themselves (the
-//! scenes, the two on-chip baselines `painter` and `plain`, the instrument-panel demo
-//! and the frames on panel driver crates `panels`) are `examples/scenes`' (the
-//! `pbuffer-scenes` crate, which the host's checks build too), re-exported here.
+//! Firmware examples of pbuffer for Cortex-M cores (QEMU `mps2-an386`, `mps2-an385`,
+//! `microbit`): the suzanne model converted and baked at build time (`suzanne`), the
+//! panel's constants baked at build time (`panel_baked`), the robot arm's parts and the
+//! instance grids baked at build time (`arm_baked`, `grids`), and the measuring harness
+//! (`fw`). The frames themselves (the scenes, the two on-chip baselines `painter` and
+//! `plain`, the instrument-panel demo and the frames on panel driver crates `panels`) are
+//! `examples/scenes`' (the `pbuffer-scenes` crate, which the host's checks build too),
+//! re-exported here.
 #![no_std]
 
 pub use pbuffer_scenes::{arm, instances, instrument, painter, panels, plain, scenes};
