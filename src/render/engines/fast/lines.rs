@@ -28,9 +28,10 @@ const SLOPE_MARGIN: u32 = 1;
 pub(super) struct ActiveLine {
     /// Row ids (`0xFFFF - face`) of its own faces.
     own: [u16; 2],
-    /// Its edge (the baked edge list's index), whose ends the faces around them
-    /// share.
-    edge: u16,
+    /// The positions of its edge's ends as the vertex cache has them
+    /// ([`FastVertex::key`]: an end outside matches no corner inside), which
+    /// the faces around them share.
+    ends: [u32; 2],
     /// Current and last centre index along the major axis, and the step (+-1).
     k: i16,
     last: i16,
@@ -88,7 +89,7 @@ pub(super) enum LineTest {
 /// What the lines' pixels in row `y` are tested against (S = `s` sub-pixel bits):
 /// the finished `row` of face entries, what the test knows of its faces' slopes
 /// (`faces`), and how a face nearer than a line's pixel lies beside the line's ends
-/// (`beside`: face, edge, edge point).
+/// (`beside`: face, the line's ends' keys, edge point).
 struct LineRow<'a, F, B> {
     y: i32,
     s: u32,
@@ -110,15 +111,15 @@ struct Centre {
 impl ActiveLine {
     /// The line between `a` and `b` (snapped screen points) with own faces
     /// `faces`; `None` when it has no pixel centre.
-    /// `edge` is its index in the baked edge list. `along`: the frame's dashes along the
-    /// edges, and the anchor
+    /// `ends`: its edge's ends' keys in the vertex cache (before clipping).
+    /// `along`: the frame's dashes along the edges, and the anchor
     /// (`2^-S` px), the unclipped position of the edge's end on `a`'s side;
     /// the line's dash phase comes with it ([`DashPhase::SCREEN`] without `along`).
     pub fn new(
         a: FastVertex,
         b: FastVertex,
         faces: [u16; 2],
-        edge: u16,
+        ends: [u32; 2],
         s: u32,
         along: Option<(Dashing, (f32, f32))>,
     ) -> Option<(Self, DashPhase)> {
@@ -170,7 +171,7 @@ impl ActiveLine {
         };
         let line = Self {
             own: faces.map(|f| 0xFFFF - f),
-            edge,
+            ends,
             k: k as i16,
             last: last as i16,
             dir: dir as i8,
@@ -213,7 +214,7 @@ impl ActiveLine {
     /// its hidden pixels in the gaps of its dashes into `gaps`.
     /// Returns false once the line has no pixel left.
     #[inline(always)]
-    fn row<F: FaceSlopes, B: Fn(u16, u16, (i32, i32)) -> Beside>(
+    fn row<F: FaceSlopes, B: Fn(u16, [u32; 2], (i32, i32)) -> Beside>(
         &mut self,
         at: &LineRow<'_, F, B>,
         visible: &mut [u32],
@@ -280,7 +281,7 @@ impl ActiveLine {
     /// Marks the line's pixel at centre `c`, in column `x` of `at.row` (none
     /// outside it), visible or hidden, and hidden in a gap.
     #[inline(always)]
-    fn pixel<F: FaceSlopes, B: Fn(u16, u16, (i32, i32)) -> Beside>(
+    fn pixel<F: FaceSlopes, B: Fn(u16, [u32; 2], (i32, i32)) -> Beside>(
         &mut self,
         x: i32,
         c: Centre,
@@ -323,7 +324,7 @@ impl ActiveLine {
     /// there, when it is not one of the line's own faces? Not within a share of its
     /// own slope, and not when it only touches the line at an end (tested exactly).
     #[inline(always)]
-    fn hidden_by<F: FaceSlopes, B: Fn(u16, u16, (i32, i32)) -> Beside>(
+    fn hidden_by<F: FaceSlopes, B: Fn(u16, [u32; 2], (i32, i32)) -> Beside>(
         &mut self,
         cell: u32,
         x: i32,
@@ -422,11 +423,11 @@ impl ActiveLine {
         k: i32,
         q: i32,
         s: u32,
-        beside: &impl Fn(u16, u16, (i32, i32)) -> Beside,
+        beside: &impl Fn(u16, [u32; 2], (i32, i32)) -> Beside,
     ) -> bool {
         let c = (2 * k + 1) << s;
         let e = if self.x_major { (c, q) } else { (q, c) };
-        match beside(face, self.edge, e) {
+        match beside(face, self.ends, e) {
             Beside::Apart => {
                 self.near_apart = true;
                 self.near_sure = self.sure();
@@ -534,7 +535,7 @@ pub(super) fn line_row<const LINES: usize>(
     test: LineTest,
     row: &[u32],
     faces: &impl FaceSlopes,
-    beside: &impl Fn(u16, u16, (i32, i32)) -> Beside,
+    beside: &impl Fn(u16, [u32; 2], (i32, i32)) -> Beside,
     visible: &mut [u32],
     hidden: &mut [u32],
     mut gaps: impl Gaps,
