@@ -246,6 +246,8 @@ impl ActiveLine {
         }
         let mut k = i32::from(self.k);
         let (mut v, mut d) = (self.v, self.d);
+        // Read once: the pixels write the record's face cache.
+        let (forward, dd) = (self.dir > 0, self.dd as u32);
         let more = loop {
             let py = v.q >> sh;
             if py > y {
@@ -258,11 +260,12 @@ impl ActiveLine {
             if k == last {
                 break false;
             }
-            k += i32::from(self.dir);
-            d = d.wrapping_add(self.dd as u32);
-            if self.dir > 0 {
+            d = d.wrapping_add(dd);
+            if forward {
+                k += 1;
                 v.forward();
             } else {
+                k -= 1;
                 v.back();
             }
         };
