@@ -10,12 +10,19 @@
 //! the pixel only when its polygon covers the edge point itself (tested exactly,
 //! only for these few).
 //!
+//! Most pixels are decided with one compare (in front of the face at the centre
+//! by more than the line's bias), and most of the others with a second: behind
+//! the face the line found last, known apart from its ends, by more than the
+//! most the rules can move the depth. Only the rest (about a quarter of
+//! suzanne's line pixels) go through the rules.
+//!
 //! With dashes along the edges ([`super::dash`]) a hidden pixel in a gap is also
 //! marked in a third mask, the gaps, which the row's output takes away.
 
 use heapless::Vec;
 
 use super::dash::{DashPhase, Dashing};
+pub(super) use super::dash::{GapMask, Gaps, NoGaps};
 use super::step::Stepper;
 use super::view::FastVertex;
 use crate::camera::sqrt;
@@ -462,65 +469,6 @@ fn next_shows_face(row: &[u32], x: i32, q: i32, s: u32) -> bool {
 #[inline(always)]
 fn edge_offset(q: i32, s: u32) -> i32 {
     q - (((q >> (s + 1)) << 1) + 1) * (1i32 << s)
-}
-
-/// Where hidden pixels in the gaps of dashes along the edges are marked: a
-/// type, so that the screen pattern's copy of the line loop has no dash work
-/// (and the lines' records no phase).
-pub(super) trait Gaps {
-    /// The line at `i` of the active lines is drawn next.
-    fn line(&mut self, i: usize);
-    /// The line at `i` ended: the last, at `last`, takes its place.
-    fn remove(&mut self, i: usize, last: usize);
-    /// Marks the current line's hidden pixel at centre `k` (column `x`) when it
-    /// is in a gap.
-    fn mark(&mut self, k: i32, x: usize);
-}
-
-/// The screen pattern: no gaps.
-pub(super) struct NoGaps;
-
-impl Gaps for NoGaps {
-    #[inline(always)]
-    fn line(&mut self, _: usize) {}
-    #[inline(always)]
-    fn remove(&mut self, _: usize, _: usize) {}
-    #[inline(always)]
-    fn mark(&mut self, _: i32, _: usize) {}
-}
-
-/// Dashes along the edges: the row's gap mask, the frame's [`Dashing::on`], the
-/// active lines' phases (in the lines' order) and the current line's index
-/// (its phase is read only for its hidden pixels).
-pub(super) struct GapMask<'a> {
-    pub words: &'a mut [u32],
-    pub on: u32,
-    pub phases: &'a mut [DashPhase],
-    pub line: usize,
-}
-
-impl Gaps for GapMask<'_> {
-    #[inline(always)]
-    fn line(&mut self, i: usize) {
-        self.line = i;
-    }
-    #[inline(always)]
-    fn remove(&mut self, i: usize, last: usize) {
-        if let Some(&p) = self.phases.get(last) {
-            if let Some(slot) = self.phases.get_mut(i) {
-                *slot = p;
-            }
-        }
-    }
-    #[inline(always)]
-    fn mark(&mut self, k: i32, x: usize) {
-        let phase = self.phases.get(self.line).copied();
-        if phase.is_some_and(|p| p.in_gap(k, self.on)) {
-            if let Some(w) = self.words.get_mut(x / 32) {
-                *w |= 1 << (x % 32);
-            }
-        }
-    }
 }
 
 /// Draws every active line's pixels in row `y` into the masks, and drops the
