@@ -105,6 +105,65 @@ impl DashPhase {
     }
 }
 
+/// Where hidden pixels in the gaps of dashes along the edges are marked: a
+/// type, so that the screen pattern's copy of the line loop has no dash work
+/// (and the lines' records no phase).
+pub(super) trait Gaps {
+    /// The line at `i` of the active lines is drawn next.
+    fn line(&mut self, i: usize);
+    /// The line at `i` ended: the last, at `last`, takes its place.
+    fn remove(&mut self, i: usize, last: usize);
+    /// Marks the current line's hidden pixel at centre `k` (column `x`) when it
+    /// is in a gap.
+    fn mark(&mut self, k: i32, x: usize);
+}
+
+/// The screen pattern: no gaps.
+pub(super) struct NoGaps;
+
+impl Gaps for NoGaps {
+    #[inline(always)]
+    fn line(&mut self, _: usize) {}
+    #[inline(always)]
+    fn remove(&mut self, _: usize, _: usize) {}
+    #[inline(always)]
+    fn mark(&mut self, _: i32, _: usize) {}
+}
+
+/// Dashes along the edges: the row's gap mask, the frame's [`Dashing::on`], the
+/// active lines' phases (in the lines' order) and the current line's index
+/// (its phase is read only for its hidden pixels).
+pub(super) struct GapMask<'a> {
+    pub words: &'a mut [u32],
+    pub on: u32,
+    pub phases: &'a mut [DashPhase],
+    pub line: usize,
+}
+
+impl Gaps for GapMask<'_> {
+    #[inline(always)]
+    fn line(&mut self, i: usize) {
+        self.line = i;
+    }
+    #[inline(always)]
+    fn remove(&mut self, i: usize, last: usize) {
+        if let Some(&p) = self.phases.get(last) {
+            if let Some(slot) = self.phases.get_mut(i) {
+                *slot = p;
+            }
+        }
+    }
+    #[inline(always)]
+    fn mark(&mut self, k: i32, x: usize) {
+        let phase = self.phases.get(self.line).copied();
+        if phase.is_some_and(|p| p.in_gap(k, self.on)) {
+            if let Some(w) = self.words.get_mut(x / 32) {
+                *w |= 1 << (x % 32);
+            }
+        }
+    }
+}
+
 /// The fractional part of `x` (`x - floor(x)`) in `2^-32` units; 0 when `x` has
 /// no fractional bits in `f32` (or is not finite).
 fn turns(x: f32) -> u32 {

@@ -174,16 +174,11 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                 let (visible, hidden) = masks.split_at_mut(words);
                 let (hidden, gaps) = hidden.split_at_mut(words.min(hidden.len()));
                 let cache: &[FastVertex] = vertices;
-                let edges = baked.edges();
-                let beside = |face: u16, edge: u16, e: (i32, i32)| {
+                let beside = |face: u16, [a, b]: [u32; 2], e: (i32, i32)| {
                     let corners = mesh.face(usize::from(face));
                     let corner = |v: &u32| cache.get(*v as usize).copied().unwrap_or_default();
                     // Positions compared as one word each; an end outside
                     // touches nothing.
-                    let ends = edges
-                        .get(usize::from(edge))
-                        .map_or([NONE; 2], |e| [e.a, e.b]);
-                    let [a, b] = ends.map(|v| corner(&u32::from(v)).key());
                     let touches = corners.iter().any(|v| {
                         let p = corner(v);
                         let k = p.key();
@@ -485,6 +480,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             .copied()
             .unwrap_or_default();
         let ea = a;
+        let keys = [a.key(), b.key()];
         let ends = if a.inside() && b.inside() {
             Some((a, b))
         } else {
@@ -494,7 +490,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         };
         if let Some((a, b)) = ends {
             let along = ALONG.then(|| (dashing, dash::anchor(map, baked, edge, ea, a)));
-            if let Some((line, phase)) = ActiveLine::new(a, b, edge.faces, e, map.s, along) {
+            if let Some((line, phase)) = ActiveLine::new(a, b, edge.faces, keys, map.s, along) {
                 let full = Error::CapacityExceeded {
                     what: Capacity::ActiveLines,
                     needed: LINES + 1,

@@ -286,6 +286,7 @@ fn make_line(seen: OnScreen<'_, '_>, e: u16) -> Option<ActiveLine> {
     let edge = seen.baked.edges().get(usize::from(e))?;
     let end = |v: u16| seen.cache.get(usize::from(v)).copied().unwrap_or_default();
     let (a, b) = (end(edge.a), end(edge.b));
+    let ends = [a.key(), b.key()];
     let (a, b) = if a.inside() && b.inside() {
         (a, b)
     } else {
@@ -293,5 +294,5 @@ fn make_line(seen: OnScreen<'_, '_>, e: u16) -> Option<ActiveLine> {
         let p = |v: u16| positions.get(usize::from(v)).copied().unwrap_or_default();
         clip_segment(seen.map, p(edge.a), p(edge.b))?
     };
-    ActiveLine::new(a, b, edge.faces, e, seen.map.s, None).map(|(line, _)| line)
+    ActiveLine::new(a, b, edge.faces, ends, seen.map.s, None).map(|(line, _)| line)
 }
