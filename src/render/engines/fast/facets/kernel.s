@@ -18,32 +18,28 @@
     beq     2f
     // an odd count: one cell first
     ldr     \c0, [\p], #4
-    pkhbt   \e, \id, \behind
-    add     \behind, \behind, \a
-    cmp     \e, \c0
-    itt     hi
-    addhi   \e, \e, \tie
-    strhi   \e, [\p, #-4]
+    PBUFFER_CELL \c0, -4, \p, \behind, \a, \id, \tie, \e
 2:
     cmp     \p, \end
     beq     3f
 1:
     ldrd    \c0, \c1, [\p], #8
-    pkhbt   \e, \id, \behind
-    add     \behind, \behind, \a
-    cmp     \e, \c0
-    itt     hi
-    addhi   \e, \e, \tie
-    strhi   \e, [\p, #-8]
-    pkhbt   \e, \id, \behind
-    add     \behind, \behind, \a
-    cmp     \e, \c1
-    itt     hi
-    addhi   \e, \e, \tie
-    strhi   \e, [\p, #-4]
+    PBUFFER_CELL \c0, -8, \p, \behind, \a, \id, \tie, \e
+    PBUFFER_CELL \c1, -4, \p, \behind, \a, \id, \tie, \e
     cmp     \p, \end
     bne     1b
 3:
+.endm
+
+// One cell \cell (loaded from \p + \off, \p already past it) against the entry of
+// \behind, which then steps by \a.
+.macro PBUFFER_CELL cell, off, p, behind, a, id, tie, e
+    pkhbt   \e, \id, \behind
+    add     \behind, \behind, \a
+    cmp     \e, \cell
+    itt     hi
+    addhi   \e, \e, \tie
+    strhi   \e, [\p, #\off]
 .endm
 
 // Entry: steps the chains (and the diagonal when \diag), both planes, and loads
