@@ -174,24 +174,28 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                 let (visible, hidden) = masks.split_at_mut(words);
                 let (hidden, gaps) = hidden.split_at_mut(words.min(hidden.len()));
                 let cache: &[FastVertex] = vertices;
-                let beside = |face: u16, [a, b]: [u32; 2], e: (i32, i32)| {
+                let beside = |face: u16, [a, b]: [u32; 2], e: (i32, i32), touches: bool| {
                     let corners = mesh.face(usize::from(face));
                     let corner = |v: &u32| cache.get(*v as usize).copied().unwrap_or_default();
-                    // Positions compared as one word each; an end outside
-                    // touches nothing.
-                    let touches = corners.iter().any(|v| {
-                        let p = corner(v);
-                        let k = p.key();
-                        (k == a || k == b) && p.inside()
-                    });
                     if !touches {
-                        Beside::Apart
-                    } else if corners.iter().all(|v| corner(v).inside())
-                        && !contains(corners.iter().map(|v| corner(v).half()), e)
-                    {
-                        Beside::Misses
-                    } else {
+                        // Positions compared as one word each; an end outside
+                        // touches nothing.
+                        let touches = corners.iter().any(|v| {
+                            let p = corner(v);
+                            let k = p.key();
+                            (k == a || k == b) && p.inside()
+                        });
+                        if !touches {
+                            return Beside::Apart;
+                        }
+                        if !corners.iter().all(|v| corner(v).inside()) {
+                            return Beside::Clipped;
+                        }
+                    }
+                    if contains(corners.iter().map(|v| corner(v).half()), e) {
                         Beside::Covers
+                    } else {
+                        Beside::Misses
                     }
                 };
                 let faces = Slopes {

@@ -57,6 +57,9 @@ pub(super) struct ActiveLine {
     near: u16,
     near_plane: bool,
     near_apart: bool,
+    /// Whether `near` is known to touch an end with every corner inside: its
+    /// corners need not be matched with the ends again.
+    near_touches: bool,
     near_value: u32,
     /// `u32::MAX` until `near` is known apart, then a margin beyond which the
     /// face is nearer at every edge point of the pixel (see
@@ -78,6 +81,9 @@ pub(super) trait FaceSlopes {
 pub(super) enum Beside {
     /// No corner of the face is at an end of the line: it hides the pixel.
     Apart,
+    /// A corner is at an end and another is outside the frame (no exact test):
+    /// it hides every pixel, as a face apart does.
+    Clipped,
     /// A corner is at an end, and the face covers the edge point: it hides it.
     Covers,
     /// A corner is at an end, and the face does not cover the edge point.
@@ -96,7 +102,9 @@ pub(super) enum LineTest {
 /// What the lines' pixels in row `y` are tested against (S = `s` sub-pixel bits):
 /// the finished `row` of face entries, what the test knows of its faces' slopes
 /// (`faces`), and how a face nearer than a line's pixel lies beside the line's ends
-/// (`beside`: face, the line's ends' keys, edge point).
+/// (`beside`: face, the line's ends' keys, edge point, and whether the face is
+/// known to touch an end with every corner inside, so that only the edge point is
+/// left to test).
 struct LineRow<'a, F, B> {
     y: i32,
     s: u32,
@@ -190,6 +198,7 @@ impl ActiveLine {
             near: 0,
             near_plane: false,
             near_apart: false,
+            near_touches: false,
             near_value: 0,
             near_sure: u32::MAX,
         };
@@ -221,7 +230,7 @@ impl ActiveLine {
     /// its hidden pixels in the gaps of its dashes into `gaps`.
     /// Returns false once the line has no pixel left.
     #[inline(always)]
-    fn row<F: FaceSlopes, B: Fn(u16, [u32; 2], (i32, i32)) -> Beside>(
+    fn row<F: FaceSlopes, B: Fn(u16, [u32; 2], (i32, i32), bool) -> Beside>(
         &mut self,
         at: &LineRow<'_, F, B>,
         visible: &mut [u32],
@@ -291,7 +300,7 @@ impl ActiveLine {
     /// Marks the line's pixel at centre `c`, in column `x` of `at.row` (none
     /// outside it), visible or hidden, and hidden in a gap.
     #[inline(always)]
-    fn pixel<F: FaceSlopes, B: Fn(u16, [u32; 2], (i32, i32)) -> Beside>(
+    fn pixel<F: FaceSlopes, B: Fn(u16, [u32; 2], (i32, i32), bool) -> Beside>(
         &mut self,
         x: i32,
         c: Centre,
@@ -334,7 +343,7 @@ impl ActiveLine {
     /// there, when it is not one of the line's own faces? Not within a share of its
     /// own slope, and not when it only touches the line at an end (tested exactly).
     #[inline(always)]
-    fn hidden_by<F: FaceSlopes, B: Fn(u16, [u32; 2], (i32, i32)) -> Beside>(
+    fn hidden_by<F: FaceSlopes, B: Fn(u16, [u32; 2], (i32, i32), bool) -> Beside>(
         &mut self,
         cell: u32,
         x: i32,
@@ -408,6 +417,7 @@ impl ActiveLine {
             };
             self.near = id;
             self.near_apart = false;
+            self.near_touches = false;
             self.near_sure = u32::MAX;
         }
         if self.near_plane {
@@ -433,12 +443,17 @@ impl ActiveLine {
         k: i32,
         q: i32,
         s: u32,
-        beside: &impl Fn(u16, [u32; 2], (i32, i32)) -> Beside,
+        beside: &impl Fn(u16, [u32; 2], (i32, i32), bool) -> Beside,
     ) -> bool {
         let c = (2 * k + 1) << s;
         let e = if self.x_major { (c, q) } else { (q, c) };
-        match beside(face, self.ends, e) {
-            Beside::Apart => {
+        // Only the edge point changes from pixel to pixel: a face that touches
+        // an end keeps that known (on suzanne, 40 of the 157 instructions of a
+        // call).
+        let answer = beside(face, self.ends, e, self.near_touches);
+        self.near_touches = matches!(answer, Beside::Covers | Beside::Misses);
+        match answer {
+            Beside::Apart | Beside::Clipped => {
                 self.near_apart = true;
                 self.near_sure = self.sure();
                 true
@@ -486,7 +501,7 @@ pub(super) fn line_row<const LINES: usize>(
     test: LineTest,
     row: &[u32],
     faces: &impl FaceSlopes,
-    beside: &impl Fn(u16, [u32; 2], (i32, i32)) -> Beside,
+    beside: &impl Fn(u16, [u32; 2], (i32, i32), bool) -> Beside,
     visible: &mut [u32],
     hidden: &mut [u32],
     mut gaps: impl Gaps,
