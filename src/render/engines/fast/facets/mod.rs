@@ -157,6 +157,12 @@ pub(super) fn facet(
         }
     };
     let first = row_at(2 * ymin, s);
+    // One plane twice unless split: its tie and slope once.
+    let (tie, slope) = if split {
+        (tie(a, b).max(tie(a2, b2)), steepest([a, b, a2, b2]))
+    } else {
+        (tie(a, b), steepest([a, b, 0, 0]))
+    };
     *out = Facet {
         // Chains are set up on the first row.
         left: EdgeStep::spent(first),
@@ -169,8 +175,8 @@ pub(super) fn facet(
         a2,
         b2,
         drow2,
-        tie: tie(a, b).max(tie(a2, b2)),
-        slope: steepest([a, b, a2, b2]),
+        tie,
+        slope,
         last: end - 1,
         face,
         corners,
