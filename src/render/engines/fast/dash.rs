@@ -12,6 +12,7 @@
 
 use super::baked::BakedMesh;
 use super::edge::CompactEdge;
+use super::float_int::{to_i32, to_u32};
 use super::view::{FastVertex, ScreenMap};
 use crate::render::{Dashes, Settings};
 
@@ -170,13 +171,13 @@ fn turns(x: f32) -> u32 {
     if !x.is_finite() || x.abs() >= 8_388_608.0 {
         return 0;
     }
-    let i = x as i32;
+    let i = to_i32(x);
     let mut f = x - i as f32;
     if f < 0.0 {
         f += 1.0;
     }
     // f32 to u32 is one instruction on an FPU; the lowest bit is not kept.
-    ((f * 2_147_483_648.0) as u32) << 1
+    to_u32(f * 2_147_483_648.0) << 1
 }
 
 /// The anchor of `edge`'s dashes, `2^-S` px: its end `a` as the vertex cache has

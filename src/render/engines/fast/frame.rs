@@ -87,10 +87,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             .map_err(Error::widen)?;
         let mesh = baked.mesh();
         let (width, height) = (usize::from(viewport.width), usize::from(viewport.height));
-        let map = ScreenMap::new(camera, viewport, s, mesh.vertices());
-        for (slot, p) in ws.vertices.iter_mut().zip(mesh.vertices()) {
-            *slot = map.vertex(*p);
-        }
+        let map = ScreenMap::with_vertices(camera, viewport, s, mesh.vertices(), ws.vertices);
         let lists = self.lists(views, baked, &map, settings, ws, viewport);
         let (depth_step_near, depth_step_far) = map.depth_steps();
         let mut stats = Stats {

@@ -23,6 +23,7 @@ use heapless::Vec;
 
 use super::dash::{DashPhase, Dashing};
 pub(super) use super::dash::{GapMask, Gaps, NoGaps};
+use super::float_int::{to_i32, to_u32};
 use super::step::Stepper;
 use super::view::FastVertex;
 use crate::camera::sqrt;
@@ -172,8 +173,8 @@ impl ActiveLine {
         let (d0, d1) = (s0.d as f32, s1.d as f32);
         let per = (d1 - d0) / du as f32;
         let c = ((2 * k + 1) * h - u0) as f32;
-        let d = (d0 + c * per) as u32;
-        let dd = (per * p as f32) as i32 * dir;
+        let d = to_u32(d0 + c * per);
+        let dd = to_i32(per * p as f32) * dir;
         let phase = match along {
             Some((dashing, (ax, ay))) => {
                 let anchor = if x_major { ax } else { ay } / (1u32 << s) as f32;

@@ -57,6 +57,7 @@ mod dash;
 mod depth_row;
 mod edge;
 mod facets;
+mod float_int;
 mod holes;
 mod lines;
 mod needs;

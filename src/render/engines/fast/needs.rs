@@ -70,10 +70,8 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
     ) -> Result<FrameNeeds, Error> {
         self.check(baked, viewport, ws, false, Dashing::of(settings).is_some())?;
         let mesh = baked.mesh();
-        let map = ScreenMap::new(camera, viewport, Frac::U32, mesh.vertices());
-        for (slot, p) in ws.vertices.iter_mut().zip(mesh.vertices()) {
-            *slot = map.vertex(*p);
-        }
+        let map =
+            ScreenMap::with_vertices(camera, viewport, Frac::U32, mesh.vertices(), ws.vertices);
         Ok(self.count(views, baked, &map, settings, ws, viewport))
     }
 

@@ -2,6 +2,7 @@
 //! column 0 of a row (16.16), set up in `f32` from three snapped corners, and the
 //! tie and steepest slope made from it.
 
+use super::float_int::to_i32;
 use super::view::FastVertex;
 
 /// Depths closer than a facet's tie are a tie, which the lower face index wins:
@@ -81,8 +82,8 @@ pub(super) fn plane_through(
     // From corner 0 to the centre of its pixel, in 2^-S px.
     let ox = (xa as f32 + 0.5) * unit - x0;
     let oy = (ya as f32 + 0.5) * unit - y0;
-    let c = v0.d.wrapping_add((a_sub * ox + b_sub * oy) as i32 as u32);
-    let (a, b) = ((a_sub * unit) as i32, (b_sub * unit) as i32);
+    let c = v0.d.wrapping_add(to_i32(a_sub * ox + b_sub * oy) as u32);
+    let (a, b) = (to_i32(a_sub * unit), to_i32(b_sub * unit));
     let drow = c
         .wrapping_add(b.wrapping_mul(row - ya) as u32)
         .wrapping_sub(a.wrapping_mul(xa) as u32);

@@ -10,6 +10,8 @@
 //! `n sr < n du <= (2B)^2 / p + 2B <= 2^(S+3) G^2 + 2B`, below `2^30` for every
 //! S <= 6 (see `view::guard_px`): no 64-bit product, no 64-bit division.
 
+use super::float_int::to_i32;
+
 /// `(floor(a / d), a mod d)` for `d > 0`.
 pub(super) fn div_floor(a: i32, d: i32) -> (i32, i32) {
     let d = d.max(1);
@@ -120,9 +122,9 @@ impl EdgeStep {
         let sh = 15 - s;
         let k = (x1 - x0) as f32 / (y1 - y0) as f32;
         let down = ((2 * first + 1) << s) - y0;
-        let start = (down as f32 * k * (1u32 << sh) as f32) as i32;
+        let start = to_i32(down as f32 * k * (1u32 << sh) as f32);
         // An edge of one row never steps, so a slope beyond i32 (saturated) is unused.
-        let dx = (k * 65536.0) as i32;
+        let dx = to_i32(k * 65536.0);
         let x = (x0 << sh)
             .wrapping_add(start)
             .wrapping_add(0x7FFF)
