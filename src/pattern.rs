@@ -140,12 +140,18 @@ impl Pattern {
     /// The value at screen pixel (x, y): true passes a hidden edge pixel.
     pub fn passes(&self, x: u32, y: u32) -> bool {
         let row = self.row_bits(y);
-        (row >> (x % u32::from(self.width.max(1)))) & 1 == 1
+        (row >> modulo(x, u32::from(self.width.max(1)))) & 1 == 1
     }
 
     fn row_bits(&self, y: u32) -> u32 {
         let h = u32::from(self.height.max(1));
-        self.rows.get((y % h) as usize).copied().unwrap_or(0)
+        self.rows.get(modulo(y, h) as usize).copied().unwrap_or(0)
+    }
+
+    /// Whether the width divides 32 (1 to 32 pixels: a power of two), so
+    /// that one word holds a row's repeats at any multiple of 32.
+    pub fn divides_word(&self) -> bool {
+        self.width.is_power_of_two()
     }
 
     /// Screen row `y`'s pattern, replicated over the 32 pixels starting at `x0`
@@ -154,7 +160,7 @@ impl Pattern {
     pub fn word(&self, x0: u32, y: u32) -> u32 {
         let w = u32::from(self.width.max(1));
         let row = self.row_bits(y);
-        if 32 % w == 0 {
+        if self.divides_word() {
             let mut word = row;
             let mut span = w;
             while span < 32 {
@@ -165,6 +171,16 @@ impl Pattern {
         } else {
             (0..32).fold(0u32, |acc, k| acc | (((row >> ((x0 + k) % w)) & 1) << k))
         }
+    }
+}
+
+/// `a % m` (`m > 0`), a mask for a power of two: a Cortex-M0 has no divide
+/// instruction, and its division call took 3 % of the panel's frame.
+fn modulo(a: u32, m: u32) -> u32 {
+    if m.is_power_of_two() {
+        a & (m - 1)
+    } else {
+        a % m
     }
 }
 

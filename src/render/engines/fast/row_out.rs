@@ -124,7 +124,7 @@ pub(super) fn emit_row<K: SpanSink, P: Palette<Color = K::Color>>(
     let lines = settings.mode != DrawMode::Surfaces;
     // A pattern whose width divides 32 has one word for the whole row.
     let w0 = settings.pattern.word(0, u32::from(y));
-    let w1 = if 32 % u32::from(settings.pattern.width().max(1)) == 0 {
+    let w1 = if settings.pattern.divides_word() {
         w0
     } else {
         settings.pattern.word(32, u32::from(y))
