@@ -16,7 +16,7 @@ STAGES = [
     # Out of line on the M0 (their callers unknown here): `eye_space` is mostly the
     # vertex transform's, `faces_view` the face lists', `EdgeStep::new` both the
     # facets' and the lines' set-up ('edge steps').
-    ('transform', r'ScreenMap>::new|ScreenMap>::vertex|ScreenMap>::eye_space'),
+    ('transform', r'ScreenMap>::(new|with_vertices|vertex|unscaled|on_screen|eye_space)$'),
     ('edge steps', r'EdgeStep>::new$'),
     ('lines: set-up', r'::activate_line'),
     ('lists', r'>::lists(::<.*>)?$|fast::faces_view$'),
