@@ -13,20 +13,23 @@ use crate::render::transform::{ProjectedVertex, ScreenVertex};
 use crate::render::{bit, face_polygon, FrameCtx};
 
 /// Chunks of consecutive faces the search keeps a box of. Meshes are written
-/// surface by surface, so a chunk is mostly one small patch of the screen
-/// (teapot: 99 faces a chunk, a pixel reads the faces of a few); 64 boxes of
-/// four `i16` are 512 bytes of stack.
-const CHUNKS: usize = 64;
+/// surface by surface, so a chunk is mostly one patch of the screen. 128 boxes of
+/// four bytes are 512 bytes of the frame loop's stack (the micro:bit's exact
+/// engines have 16 KiB of RAM in all); on the teapot (50 faces a chunk) a search
+/// read 279 faces against 456 with 64 chunks of `i16` boxes, and 256 chunks would
+/// read 233 for 1 KiB.
+const CHUNKS: usize = 128;
 
-/// A box in whole pixels (min x, min y, max x, max y), saturated to `i16`.
-type PixelBox = [i16; 4];
+/// A box in cells of `2^shift` half sub-pixel units (min x, min y, max x, max y),
+/// saturated to `u8`.
+type CellBox = [u8; 4];
 
 /// The box of no face: holds no point.
-const EMPTY: PixelBox = [i16::MAX, i16::MAX, i16::MIN, i16::MIN];
+const EMPTY: CellBox = [u8::MAX, u8::MAX, 0, 0];
 
 /// The box of a face cut by the view volume (asked by its polygon): holds every
 /// point.
-const ALL: PixelBox = [i16::MIN, i16::MIN, i16::MAX, i16::MAX];
+const ALL: CellBox = [0, 0, u8::MAX, u8::MAX];
 
 /// The screen boxes of chunks of consecutive drawn faces, set up on the frame's
 /// first search (most frames make none): a chunk's box holds the box of each of its
@@ -36,8 +39,11 @@ const ALL: PixelBox = [i16::MIN, i16::MIN, i16::MAX, i16::MAX];
 pub(crate) struct FaceChunks {
     /// Faces a chunk spans; 0 until set up.
     size: usize,
+    /// Cell size: half sub-pixel units a cell, as a power of two, the frame's
+    /// width and height in at most 256 cells.
+    shift: u32,
     /// The chunks' boxes, in face order.
-    boxes: [PixelBox; CHUNKS],
+    boxes: [CellBox; CHUNKS],
 }
 
 impl FaceChunks {
@@ -45,6 +51,7 @@ impl FaceChunks {
     pub const fn new() -> Self {
         Self {
             size: 0,
+            shift: 0,
             boxes: [EMPTY; CHUNKS],
         }
     }
@@ -60,6 +67,9 @@ impl FaceChunks {
     ) {
         let size = count.div_ceil(CHUNKS).max(1);
         self.size = size;
+        let side = u32::from(ctx.viewport.width.max(ctx.viewport.height)).saturating_sub(1);
+        self.shift = ctx.s + 1 + (32 - side.leading_zeros()).saturating_sub(8);
+        let shift = self.shift;
         for (c, chunk) in self.boxes.iter_mut().enumerate() {
             let mut b = EMPTY;
             for f in (c * size..(c + 1) * size).take_while(|&f| f < count) {
@@ -68,7 +78,7 @@ impl FaceChunks {
                 }
                 b = match face_box(ctx, vertices, f) {
                     Some([lx, ly, hx, hy]) => {
-                        let p = |v: i64| pixel(v, ctx.s);
+                        let p = |v: i64| cell(v, shift);
                         [
                             b[0].min(p(lx)),
                             b[1].min(p(ly)),
@@ -84,11 +94,11 @@ impl FaceChunks {
     }
 }
 
-/// The pixel holding half sub-pixel coordinate `v` (units of `2^-(s+1)` px),
-/// saturated to `i16`: flooring and saturating keep order, so a box that holds a
-/// point holds it still in pixels.
-fn pixel(v: i64, s: u32) -> i16 {
-    (v >> (s + 1)).clamp(i64::from(i16::MIN), i64::from(i16::MAX)) as i16
+/// The cell holding half sub-pixel coordinate `v` (units of `2^-(s+1)` px),
+/// cells of `2^shift` units, saturated to `u8`: flooring and saturating keep
+/// order, so a box that holds a point holds it still in cells.
+fn cell(v: i64, shift: u32) -> u8 {
+    (v >> shift.min(63)).clamp(0, i64::from(u8::MAX)) as u8
 }
 
 /// Face `f`'s corners' screen box in half sub-pixel units (min x, min y, max x,
@@ -141,7 +151,7 @@ pub(super) fn covered_nearer<const POLY: usize>(
     if chunks.size == 0 {
         chunks.set_up(ctx, vertices, drawn, count);
     }
-    let (x, y) = (pixel(px.px, ctx.s), pixel(px.py, ctx.s));
+    let (x, y) = (cell(px.px, chunks.shift), cell(px.py, chunks.shift));
     let size = chunks.size;
     for (c, b) in chunks.boxes.iter().enumerate() {
         if x < b[0] || y < b[1] || x > b[2] || y > b[3] {
