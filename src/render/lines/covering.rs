@@ -20,16 +20,17 @@ use crate::render::{bit, face_polygon, FrameCtx};
 /// read 233 for 1 KiB.
 const CHUNKS: usize = 128;
 
-/// A box in cells of `2^shift` half sub-pixel units (min x, min y, max x, max y),
-/// saturated to `u8`.
-type CellBox = [u8; 4];
+/// A chunk's box in cells of `2^shift` half sub-pixel units, saturated to `u8`
+/// (min x, min y, max x, max y), and the widest and highest box of one of its faces
+/// (cells).
+type CellBox = [u8; 6];
 
 /// The box of no face: holds no point.
-const EMPTY: CellBox = [u8::MAX, u8::MAX, 0, 0];
+const EMPTY: CellBox = [u8::MAX, u8::MAX, 0, 0, 0, 0];
 
 /// The box of a face cut by the view volume (asked by its polygon): holds every
 /// point.
-const ALL: CellBox = [0, 0, u8::MAX, u8::MAX];
+const ALL: CellBox = [0, 0, u8::MAX, u8::MAX, u8::MAX, u8::MAX];
 
 /// The screen boxes of chunks of consecutive drawn faces, set up on the frame's
 /// first search (most frames make none): a chunk's box holds the box of each of its
@@ -78,12 +79,17 @@ impl FaceChunks {
                 }
                 b = match face_box(ctx, vertices, f) {
                     Some([lx, ly, hx, hy]) => {
-                        let p = |v: i64| cell(v, shift);
+                        let ([lx, ly], [hx, hy]) = (
+                            [cell(lx, shift), cell(ly, shift)],
+                            [cell(hx, shift), cell(hy, shift)],
+                        );
                         [
-                            b[0].min(p(lx)),
-                            b[1].min(p(ly)),
-                            b[2].max(p(hx)),
-                            b[3].max(p(hy)),
+                            b[0].min(lx),
+                            b[1].min(ly),
+                            b[2].max(hx),
+                            b[3].max(hy),
+                            b[4].max(hx.saturating_sub(lx)),
+                            b[5].max(hy.saturating_sub(ly)),
                         ]
                     }
                     None => ALL,
@@ -97,6 +103,7 @@ impl FaceChunks {
 /// The cell holding half sub-pixel coordinate `v` (units of `2^-(s+1)` px),
 /// cells of `2^shift` units, saturated to `u8`: flooring and saturating keep
 /// order, so a box that holds a point holds it still in cells.
+#[inline]
 fn cell(v: i64, shift: u32) -> u8 {
     (v >> shift.min(63)).clamp(0, i64::from(u8::MAX)) as u8
 }
@@ -114,6 +121,19 @@ fn face_box(ctx: &FrameCtx<'_, '_>, vertices: &[ProjectedVertex], f: usize) -> O
         hi = [hi[0].max(x), hi[1].max(y)];
     }
     Some([lo[0], lo[1], hi[0], hi[1]])
+}
+
+/// Face `f`'s first corner on screen, `None` when it has none or it is out of
+/// view. Where the face's box holds a point, this corner's cell is no farther from
+/// the point's on an axis than the box is wide (or high) in cells.
+#[inline]
+fn first_corner(
+    ctx: &FrameCtx<'_, '_>,
+    vertices: &[ProjectedVertex],
+    f: usize,
+) -> Option<ScreenVertex> {
+    let &v = ctx.mesh.face(f).first()?;
+    vertices.get(v as usize)?.projection()
 }
 
 /// False when face `f`'s corners are all in view and their screen box misses the
@@ -152,12 +172,25 @@ pub(super) fn covered_nearer<const POLY: usize>(
         chunks.set_up(ctx, vertices, drawn, count);
     }
     let (x, y) = (cell(px.px, chunks.shift), cell(px.py, chunks.shift));
-    let size = chunks.size;
-    for (c, b) in chunks.boxes.iter().enumerate() {
-        if x < b[0] || y < b[1] || x > b[2] || y > b[3] {
+    let (size, shift) = (chunks.size, chunks.shift);
+    for (c, &[lx, ly, hx, hy, rx, ry]) in chunks.boxes.iter().enumerate() {
+        if x < lx || y < ly || x > hx || y > hy {
             continue;
         }
-        for f in (c * size..(c + 1) * size).take_while(|&f| f < count) {
+        for f in c * size..((c + 1) * size).min(count) {
+            if !bit(drawn, f) {
+                continue;
+            }
+            // Most faces of a chunk lie away from the point: one corner tells.
+            if let Some(p) = first_corner(ctx, vertices, f) {
+                let (cx, cy) = (
+                    cell(2 * i64::from(p.x), shift),
+                    cell(2 * i64::from(p.y), shift),
+                );
+                if cx.abs_diff(x) > rx || cy.abs_diff(y) > ry {
+                    continue;
+                }
+            }
             if face_hides::<POLY>(ctx, vertices, drawn, edge, px, asked, f) {
                 return true;
             }
