@@ -7,7 +7,7 @@
 use embedded_graphics_core::pixelcolor::PixelColor;
 
 use super::compose::{Compose, FrameProbe};
-use super::lines::{line_pass, Band, LineMasks};
+use super::lines::{line_pass, Band, FaceChunks, LineMasks};
 use super::transform::ProjectedVertex;
 use super::{band_rows, begin_frame, FrameCtx, Settings, Stats};
 use crate::camera::Camera;
@@ -177,6 +177,8 @@ where
             rows: 0,
         },
     };
+    // The line test's chunk boxes, set up once a frame where it first needs them.
+    let mut chunks = FaceChunks::new();
     let mut top = 0u16;
     while top < height && band_rows > 0 {
         let rows = band_rows.min(height - top);
@@ -200,7 +202,8 @@ where
                 .map_err(Error::widen)?;
         }
         if settings.mode.draws_lines() {
-            line_pass::<POLY>(&ctx, vertices, drawn, features, input.edges, &mut band);
+            let (edges, chunks) = (input.edges, &mut chunks);
+            line_pass::<POLY>(&ctx, vertices, drawn, features, edges, chunks, &mut band);
         }
         stats.spans += composer.band(&ctx, vertices, drawn, &band, sink, probe)?;
         top += rows;

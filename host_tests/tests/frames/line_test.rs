@@ -141,3 +141,70 @@ fn tilted_pair(gap: f64, slope: f64) -> MeshData {
     mesh.faces.push(vec![4, 5, 6, 7]);
     mesh
 }
+
+/// An edge hidden only through the search for a covering face, with that face
+/// last in a long mesh and away from the other faces on screen: a square's top
+/// edge (row 20.75) lies behind a rectangle nearer the eye cut into strips 0.15 px
+/// high, so that the strips at the two pixel centres beside each edge point (rows
+/// 20.5 and 21.5) end before it and only a third strip covers it. 3,000 small
+/// quads in another part of the screen come first in face order, the square and
+/// the strips last. A search that skips faces by their place in the mesh or on
+/// screen (the chunk boxes of `covered_nearer`) and drops the covering strip draws
+/// the 50 px of the edge visible.
+#[test]
+fn edge_behind_a_strip_last_in_a_long_mesh_is_hidden() {
+    let mesh = strips_after_a_grid();
+    let cam = CameraSpec {
+        eye: [0.0, 0.0, 10.0],
+        target: [0.0, 0.0, 0.0],
+        up: [0.0, 1.0, 0.0],
+        projection: ProjectionSpec::Orthographic { half_height: 60.0 },
+        near: 0.1,
+        far: 100.0,
+    };
+    let failures = exact_engines_against_reference("strips", &mesh, &cam, (160, 120), false);
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// The scene of [`edge_behind_a_strip_last_in_a_long_mesh_is_hidden`], seen from
+/// +z at one world unit a pixel (screen x = x + 80, y = 60 - y): a 60 x 50 grid
+/// of quads at z = 0 on the left (screen x 5..75), then a square at z = 0 on the
+/// right with its top edge at y = 39.25 (screen row 20.75), then 56 strips at
+/// z = 1, 0.15 high from y = 36, over that edge.
+fn strips_after_a_grid() -> MeshData {
+    let mut mesh = MeshData::default();
+    let (cols, rows) = (60u32, 50u32);
+    for j in 0..=rows {
+        for i in 0..=cols {
+            let (x, y) = (
+                -75.0 + 70.0 * f64::from(i) / 60.0,
+                -55.0 + 2.2 * f64::from(j),
+            );
+            mesh.vertices.push([x, y, 0.0]);
+        }
+    }
+    for j in 0..rows {
+        for i in 0..cols {
+            let v = j * (cols + 1) + i;
+            mesh.faces.push(vec![v, v + 1, v + cols + 2, v + cols + 1]);
+        }
+    }
+    let base = mesh.vertices.len() as u32;
+    mesh.vertices.extend([
+        [10.3, -30.0, 0.0],
+        [60.3, -30.0, 0.0],
+        [60.3, 39.25, 0.0],
+        [10.3, 39.25, 0.0],
+    ]);
+    mesh.faces.push(vec![base, base + 1, base + 2, base + 3]);
+    let base = mesh.vertices.len() as u32;
+    for k in 0..=56u32 {
+        let y = 36.0 + 0.15 * f64::from(k);
+        mesh.vertices.extend([[0.0, y, 1.0], [70.0, y, 1.0]]);
+    }
+    for k in 0..56 {
+        let v = base + 2 * k;
+        mesh.faces.push(vec![v, v + 1, v + 3, v + 2]);
+    }
+    mesh
+}

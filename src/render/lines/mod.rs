@@ -5,8 +5,10 @@
 use heapless::Vec;
 
 mod bend;
+mod covering;
 
 pub(crate) use bend::Bend;
+pub(crate) use covering::FaceChunks;
 
 use super::transform::{DepthGrid, ProjectedVertex, ScreenVertex};
 use super::{bit, face_polygon, FrameCtx};
@@ -16,6 +18,7 @@ use crate::render::depth::coverage::covers;
 use crate::render::depth::fan::FaceView;
 use crate::render::depth::plane::DepthPlane;
 use crate::scan::edge::div_rem_euclid;
+use covering::covered_nearer;
 
 /// Visible and hidden line pixels of one band, bit-packed: bit `k` of word `w` of a
 /// row is pixel `32w + k`.
@@ -232,13 +235,15 @@ impl Stepper {
 
 /// Draws the feature edges that reach the band into its line masks. Bands come top
 /// to bottom, each below the last: an edge that ends above the next band (or is out
-/// of view) leaves `features`, so that later bands do not ask it again.
+/// of view) leaves `features`, so that later bands do not ask it again. `chunks`
+/// is the frame's, kept from band to band (set up on the frame's first search).
 pub(crate) fn line_pass<const POLY: usize>(
     ctx: &FrameCtx<'_, '_>,
     vertices: &[ProjectedVertex],
     drawn: &[u32],
     features: &mut [u32],
     edges: &EdgeAdjacency<'_>,
+    chunks: &mut FaceChunks,
     band: &mut Band<'_>,
 ) {
     let Band {
@@ -249,7 +254,7 @@ pub(crate) fn line_pass<const POLY: usize>(
     let hide = ctx.settings.mode.needs_depth();
     let grid = ctx.view.depth_grid();
     // The last face tested for covering an edge point, with its polygon and plane.
-    let mut cache = FaceCache::<POLY>::new();
+    let mut cache = FaceCache::<POLY>::new(chunks);
     let all = edges.edges();
     // Most edges miss a band: rejected by their ends' rows (which hold every row the
     // walk draws) before the clipping and the walk's divisions (a long library call
@@ -340,14 +345,16 @@ struct CachedFace<const POLY: usize> {
     bend: Bend,
 }
 
-/// The last faces tested by the line pass.
-struct FaceCache<const POLY: usize> {
+/// The last faces tested by the line pass, and the frame's chunk boxes for the
+/// search of a covering face ([`covered_nearer`]).
+struct FaceCache<'c, const POLY: usize> {
     slots: [CachedFace<POLY>; CACHED_FACES],
     next: usize,
+    chunks: &'c mut FaceChunks,
 }
 
-impl<const POLY: usize> FaceCache<POLY> {
-    fn new() -> Self {
+impl<'c, const POLY: usize> FaceCache<'c, POLY> {
+    fn new(chunks: &'c mut FaceChunks) -> Self {
         Self {
             slots: [const {
                 CachedFace {
@@ -358,6 +365,7 @@ impl<const POLY: usize> FaceCache<POLY> {
                 }
             }; CACHED_FACES],
             next: 0,
+            chunks,
         }
     }
 
@@ -412,7 +420,7 @@ fn hidden<const POLY: usize>(
     edge: &MeshEdge,
     band: &IdBand<'_>,
     px: &EdgePixel,
-    cache: &mut FaceCache<POLY>,
+    cache: &mut FaceCache<'_, POLY>,
 ) -> bool {
     let own = |id: u16| owns(ctx.mesh, edge, usize::from(id - 1));
     let centre = |k: u16| (2 * i64::from(k) + 1) << ctx.s;
@@ -472,30 +480,7 @@ fn hidden<const POLY: usize>(
             }
         }
     }
-    asked != [0, 0] && covered_nearer::<POLY>(ctx, vertices, drawn, edge, px, asked)
-}
-
-/// False when face `f`'s corners are all in view and their screen box misses the
-/// edge point of `px`; true otherwise (a clipped face is asked by its polygon).
-fn box_holds(
-    ctx: &FrameCtx<'_, '_>,
-    vertices: &[ProjectedVertex],
-    f: usize,
-    px: &EdgePixel,
-) -> bool {
-    let (mut lo, mut hi) = ([i64::MAX; 2], [i64::MIN; 2]);
-    for &v in ctx.mesh.face(f) {
-        let Some(p) = vertices
-            .get(v as usize)
-            .and_then(ProjectedVertex::projection)
-        else {
-            return true;
-        };
-        let (x, y) = (2 * i64::from(p.x), 2 * i64::from(p.y));
-        lo = [lo[0].min(x), lo[1].min(y)];
-        hi = [hi[0].max(x), hi[1].max(y)];
-    }
-    (lo[0]..=hi[0]).contains(&px.px) && (lo[1]..=hi[1]).contains(&px.py)
+    asked != [0, 0] && covered_nearer::<POLY>(ctx, vertices, drawn, cache.chunks, edge, px, asked)
 }
 
 /// Whether face `f` is one of `edge`'s own faces (for a non-manifold edge, any
@@ -507,57 +492,6 @@ pub(crate) fn owns(mesh: &Mesh<'_>, edge: &MeshEdge, f: usize) -> bool {
         .take(edge.face_count.min(2) as usize)
         .any(|&g| g as usize == f)
         || (edge.kind == EdgeKind::NonManifold && face_owns_edge(mesh, edge, f))
-}
-
-/// Whether a drawn face other than the edge's own and those already asked
-/// (`asked`) covers the edge point of `px` and is nearer there: the exact answer
-/// where the faces nearest at the two pixel centres beside the point do not hold
-/// it (a face beside a silhouette, seen at the centre, ends before the edge). Rare
-/// (113 of suzanne's 4,824 line pixels at 400x240), so every face whose corners'
-/// box holds the point is asked.
-#[inline(never)]
-fn covered_nearer<const POLY: usize>(
-    ctx: &FrameCtx<'_, '_>,
-    vertices: &[ProjectedVertex],
-    drawn: &[u32],
-    edge: &MeshEdge,
-    px: &EdgePixel,
-    asked: [u16; 2],
-) -> bool {
-    for f in 0..ctx.mesh.face_count().min(usize::from(u16::MAX)) {
-        let id = (f + 1) as u16;
-        if !bit(drawn, f)
-            || asked.contains(&id)
-            || !box_holds(ctx, vertices, f, px)
-            || owns(ctx.mesh, edge, f)
-            || touches(ctx.mesh, edge, f)
-        {
-            continue;
-        }
-        // Set up here, not in the cache: the faces at the two centres stay there
-        // for the next pixels, and a face that does not cover the point needs no
-        // plane.
-        let mut poly: Vec<ScreenVertex, POLY> = Vec::new();
-        if !face_polygon(ctx, vertices, f, &mut poly).unwrap_or(false)
-            || !covers(&poly, px.px, px.py)
-            || across_collapsed_own_face(ctx, vertices, edge, f, &poly, px)
-        {
-            continue;
-        }
-        let Some(plane) = DepthPlane::new(&poly, ctx.s) else {
-            continue;
-        };
-        let mut bend = Bend::of(ctx.mesh.face(f).len());
-        if bend.nearer(
-            &view(ctx, vertices, f, &poly, &plane),
-            px,
-            (px.px, px.py),
-            REACH_COVERING,
-        ) {
-            return true;
-        }
-    }
-    false
 }
 
 /// Face `f` with its polygon and plane, for [`Bend::nearer`].
