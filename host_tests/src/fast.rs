@@ -5,12 +5,14 @@
 use fixed::types::extra::LeEqU32;
 use std::cell::Cell;
 
+use pbuffer::render::Cull;
 use pbuffer::render::{
     BakedMesh, CompactEdge, DashPhase, FacePlane, FastRenderer, FastVertex, FastWorkspace, NO_HOLE,
 };
 use pbuffer::{Dashes, MonoPalette};
 
 use crate::frame::{CameraSpec, Frame, MeshData, RenderSpec};
+use crate::qi::{QiCounts, QiFrame, QiMesh};
 use crate::setup::{FrameInputs, Measured, SceneStorage};
 
 /// Active facets and lines the host engine has room for.
@@ -18,6 +20,13 @@ pub const FACETS: usize = 4096;
 pub const LINES: usize = 4096;
 
 thread_local! {
+    /// Set by [`with_segment_lines`]: the line pixels are classified again by the
+    /// segment prototype ([`crate::qi`]), and its counts summed here.
+    static SEGMENT_LINES: Cell<bool> = const { Cell::new(false) };
+    static SEGMENT_COUNTS: Cell<QiCounts> = const { Cell::new(QiCounts {
+        drawn: 0, contours: 0, box_pairs: 0, crossings: 0, nearer: 0, seeds: 0,
+        reseeds: 0, negative: 0, fallback: 0, point_faces: 0, piercings: 0, checked: 0, mismatched: 0,
+    }) };
     /// Set by [`with_every_back_face`]: the baked holes' labels are dropped.
     static EVERY_BACK_FACE: Cell<bool> = const { Cell::new(false) };
 }
@@ -30,6 +39,17 @@ pub fn with_every_back_face<T>(f: impl FnOnce() -> T) -> T {
     let out = f();
     EVERY_BACK_FACE.with(|c| c.set(false));
     out
+}
+
+/// Runs `f` with the fast engine's line pixels classified by the segment
+/// prototype ([`crate::qi`]) on this thread; returns what `f` returns and the
+/// prototype's counts summed over its frames.
+pub fn with_segment_lines<T>(f: impl FnOnce() -> T) -> (T, QiCounts) {
+    SEGMENT_LINES.with(|c| c.set(true));
+    SEGMENT_COUNTS.with(|c| c.set(QiCounts::default()));
+    let out = f();
+    SEGMENT_LINES.with(|c| c.set(false));
+    (out, SEGMENT_COUNTS.with(Cell::get))
 }
 
 /// The fast engine's per-mesh constants, owned.
@@ -165,5 +185,40 @@ pub(crate) fn render_fast<Frac: LeEqU32>(
             stats.peak_faces as usize,
             stats.peak_edges as usize,
         );
-    Ok(measured.frame(working, scene.build_bytes))
+    let mut frame = measured.frame(working, scene.build_bytes);
+    if SEGMENT_LINES.with(Cell::get) {
+        let cull = match scene.settings.cull {
+            Cull::On => true,
+            Cull::Off => false,
+            Cull::Auto => scene.adjacency.is_closed(),
+        };
+        let qmesh = QiMesh::new(&scene.mesh, &scene.adjacency);
+        let qf = QiFrame {
+            mesh: &qmesh,
+            cache: &buffers.vertices,
+            facing: &buffers.facing,
+            cull,
+            s: Frac::U32,
+            width: w,
+            height: h,
+        };
+        let mut lines = vec![0u8; w * h];
+        let mut counts = QiCounts::default();
+        if qf
+            .classify(
+                &mut lines,
+                &mut counts,
+                std::env::var_os("PBUFFER_SEGMENT_CHECK").is_some(),
+            )
+            .is_some()
+        {
+            frame.lines = lines;
+        }
+        SEGMENT_COUNTS.with(|c| {
+            let mut all = c.get();
+            all.add(&counts);
+            c.set(all);
+        });
+    }
+    Ok(frame)
 }

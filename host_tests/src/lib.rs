@@ -44,6 +44,7 @@ pub mod newell;
 pub mod pick;
 pub mod pipeline;
 pub mod posed;
+pub mod qi;
 pub mod schemes;
 pub mod setup;
 

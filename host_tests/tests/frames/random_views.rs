@@ -391,3 +391,75 @@ fn self_test_a_frame_with_lines_and_faces_gone_wrong_fails_the_sweep() {
         );
     }
 }
+
+/// The segment prototype (`host_tests::qi`) on the sweep's views: line frames over
+/// the limits and misclassified line pixels for the fast engine's per-pixel test,
+/// the segment classification and the Z-buffer, and the prototype's counts.
+/// A measurement, not a check: `cargo test --release -p host_tests --test frames
+/// segment_lines_sweep -- --ignored --nocapture`.
+#[test]
+#[ignore]
+fn segment_lines_sweep() {
+    use host_tests::fast::with_segment_lines;
+    use host_tests::qi::QiCounts;
+    let count = env("PBUFFER_SWEEP_VIEWS", VIEWS as u64) as usize;
+    let mut rng = Rng::new(env("PBUFFER_SWEEP_SEED", SEED));
+    let names = ["fast per-pixel", "fast segments", "zbuffer"];
+    let mut over_limits = [0usize; 3];
+    let mut misclassified = [0f64; 3];
+    let mut frames = 0usize;
+    let mut all = QiCounts::default();
+    let mut worst: Vec<(f64, String)> = Vec::new();
+    for (name, mesh, cull) in meshes() {
+        for (k, view) in views(&mesh, count, &mut rng).iter().enumerate() {
+            let only = std::env::var("PBUFFER_SWEEP_ONLY").unwrap_or_default();
+            if !only.is_empty() && only != format!("{name} {k}") && only != name {
+                continue;
+            }
+            let rf = reference_frame(&mesh, &view.camera, &spec(EngineSpec::ZBuffer, view, cull))
+                .unwrap();
+            let fast =
+                render_frame(&mesh, &view.camera, &spec(EngineSpec::Fast, view, cull)).unwrap();
+            let (seg, counts) = with_segment_lines(|| {
+                render_frame(&mesh, &view.camera, &spec(EngineSpec::Fast, view, cull)).unwrap()
+            });
+            all.add(&counts);
+            let z =
+                render_frame(&mesh, &view.camera, &spec(EngineSpec::ZBuffer, view, cull)).unwrap();
+            frames += 1;
+            for (i, f) in [&fast, &seg, &z].into_iter().enumerate() {
+                let m = measure(f, &rf, true);
+                let lim = limits(true);
+                if m.lines.iter().zip(lim.lines).any(|(v, c)| *v > c + 1e-9) {
+                    over_limits[i] += 1;
+                    if i == 1 {
+                        println!(
+                            "over: {name} view {k} {}x{} {:?} (per-pixel {:?})",
+                            view.size.0,
+                            view.size.1,
+                            m.lines,
+                            measure(&fast, &rf, true).lines
+                        );
+                    }
+                }
+                misclassified[i] += m.lines[0];
+                if i == 1 {
+                    worst.push((m.lines[0], format!("{name} view {k}")));
+                }
+            }
+        }
+    }
+    worst.sort_by(|a, b| b.0.total_cmp(&a.0));
+    for (i, n) in names.iter().enumerate() {
+        println!(
+            "{n:>15}: {} of {frames} frames over the line limits, mean misclassified {:.4} %",
+            over_limits[i],
+            misclassified[i] / frames as f64
+        );
+    }
+    println!(
+        "segments worst misclassified: {:?}",
+        &worst[..worst.len().min(8)]
+    );
+    println!("segment counts over {frames} frames: {all:?}");
+}
