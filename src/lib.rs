@@ -163,6 +163,7 @@ pub mod conventions {}
 /// The names one frame needs: `use pbuffer::prelude::*;`.
 pub mod prelude {
     pub use crate::{
-        Camera, Capacity, DrawMode, Drawing, Error, FrameRows, Mesh, Pose, SceneDrawing, Settings,
+        packed_len, BakedDrawing, Camera, Capacity, DrawMode, Drawing, Error, FrameRows, Mesh,
+        PackedFramebuffer, Pose, SceneDrawing, Settings, Stats,
     };
 }

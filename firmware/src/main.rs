@@ -54,7 +54,7 @@ const EXPECTED: u64 = 0xb1a6_9344_c4b8_5c2d;
 use cube::fnv1a64;
 
 /// Runs `f` and returns the instructions it took: with `-icount shift=0`, SysTick on the
-/// core clock advances once per 40 instructions (see shared FIRMWARE.md).
+/// core clock advances once per 40 instructions (see docs/firmware.md).
 fn count<R>(syst: &mut SYST, f: impl FnOnce() -> R) -> (R, u32) {
     syst.clear_current();
     let _ = syst.has_wrapped(); // clears COUNTFLAG

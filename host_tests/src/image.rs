@@ -4,6 +4,10 @@
 //!   `pbuffer::PackedFramebuffer::as_bytes`: row-major, `ceil(width / 8)` bytes per row,
 //!   MSB-first, bit set = pixel on) as a PNG, each pixel blown up to `scale x scale`.
 //! * [`write_rgb_png`] does the same for an 8-bit RGB buffer (3 bytes per pixel, row-major).
+//!
+//! A picture of at most 256 colours (every frame of the project's tools) is written as
+//! an indexed PNG, its palette the colours in order of first appearance, at 1, 2, 4 or 8
+//! bits a pixel: the same pixels as an RGB PNG, a small fraction of its size.
 //! * [`fnv1a64`] is the FNV-1a 64-bit hash of a byte slice, used to pin down a frame.
 //!
 //! Set pixels are drawn black on white (ink on paper), the way the line drawings of the
@@ -111,7 +115,8 @@ pub fn write_packed_png(
 }
 
 /// Writes an 8-bit RGB buffer (row-major, 3 bytes per pixel) as a PNG, scaled by
-/// `scale` (>= 1): each pixel becomes a `scale x scale` block.
+/// `scale` (>= 1): each pixel becomes a `scale x scale` block. Indexed when the
+/// picture has at most 256 colours, RGB otherwise; decoded, the same pixels.
 pub fn write_rgb_png(
     path: &Path,
     rgb: &[u8],
@@ -157,12 +162,89 @@ pub fn write_rgb_png(
         u32::try_from(sw).map_err(|_| too_big())?,
         u32::try_from(sh).map_err(|_| too_big())?,
     );
-    enc.set_color(png::ColorType::Rgb);
-    enc.set_depth(png::BitDepth::Eight);
+    enc.set_compression(png::Compression::Best);
+    let data = match indexed(&out, sw) {
+        Some(Indexed {
+            palette,
+            depth,
+            rows,
+        }) => {
+            enc.set_color(png::ColorType::Indexed);
+            enc.set_depth(depth);
+            enc.set_palette(palette);
+            rows
+        }
+        None => {
+            enc.set_color(png::ColorType::Rgb);
+            enc.set_depth(png::BitDepth::Eight);
+            out
+        }
+    };
     let mut w = enc.write_header().map_err(io::Error::other)?;
-    w.write_image_data(&out).map_err(io::Error::other)?;
+    w.write_image_data(&data).map_err(io::Error::other)?;
     w.finish().map_err(io::Error::other)?;
     Ok(())
+}
+
+/// An RGB image as palette indices: the colours in order of first appearance and
+/// the rows packed at the smallest bit depth that holds their indices.
+struct Indexed {
+    palette: Vec<u8>,
+    depth: png::BitDepth,
+    rows: Vec<u8>,
+}
+
+/// The image `rgb` (`width` pixels a row) as palette indices, when it has at most
+/// 256 colours; the decoded pixels are the very same.
+fn indexed(rgb: &[u8], width: usize) -> Option<Indexed> {
+    if rgb.is_empty() || width == 0 {
+        return None;
+    }
+    let mut colours: Vec<[u8; 3]> = Vec::new();
+    let mut index = Vec::with_capacity(rgb.len() / 3);
+    let mut last: Option<([u8; 3], u8)> = None;
+    for px in rgb.chunks_exact(3) {
+        let c = [px[0], px[1], px[2]];
+        let k = match last {
+            Some((lc, lk)) if lc == c => lk,
+            _ => {
+                let k = match colours.iter().position(|&p| p == c) {
+                    Some(k) => k,
+                    None if colours.len() < 256 => {
+                        colours.push(c);
+                        colours.len() - 1
+                    }
+                    None => return None,
+                };
+                let k = u8::try_from(k).ok()?;
+                last = Some((c, k));
+                k
+            }
+        };
+        index.push(k);
+    }
+    let (depth, bits) = match colours.len() {
+        0..=2 => (png::BitDepth::One, 1),
+        3..=4 => (png::BitDepth::Two, 2),
+        5..=16 => (png::BitDepth::Four, 4),
+        _ => (png::BitDepth::Eight, 8),
+    };
+    let per_byte = 8 / bits;
+    let mut rows = Vec::with_capacity(index.len() / per_byte + index.len() / width + 1);
+    for row in index.chunks(width) {
+        for group in row.chunks(per_byte) {
+            let mut byte = 0u8;
+            for (j, &k) in group.iter().enumerate() {
+                byte |= k << (8 - bits * (j + 1));
+            }
+            rows.push(byte);
+        }
+    }
+    Some(Indexed {
+        palette: colours.concat(),
+        depth,
+        rows,
+    })
 }
 
 #[cfg(test)]
@@ -193,13 +275,46 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("pbuffer-image-{}", std::process::id()));
         let p = dir.join("t.png");
         write_packed_png(&p, &[0xF0, 0x0F], 8, 2, 3).unwrap();
-        let dec = png::Decoder::new(File::open(&p).unwrap());
+        let mut dec = png::Decoder::new(File::open(&p).unwrap());
+        dec.set_transformations(png::Transformations::EXPAND);
         let mut r = dec.read_info().unwrap();
+        assert_eq!(r.info().color_type, png::ColorType::Indexed);
+        assert_eq!(r.info().bit_depth, png::BitDepth::One);
         let mut buf = vec![0; r.output_buffer_size()];
         let info = r.next_frame(&mut buf).unwrap();
         assert_eq!((info.width, info.height), (24, 6));
         assert_eq!(&buf[..3], &[0, 0, 0]); // (0,0) set: black
         assert_eq!(&buf[12 * 3..12 * 3 + 3], &[255, 255, 255]); // (4,0) clear: white
+        std::fs::remove_dir_all(dir).ok();
+    }
+
+    #[test]
+    fn indexed_when_few_colours_and_pixels_unchanged() {
+        let dir = std::env::temp_dir().join(format!("pbuffer-indexed-{}", std::process::id()));
+        let p = dir.join("t.png");
+        // 5 colours (4-bit indices) and 300 colours (RGB): decoded, the same pixels.
+        for (colours, kind) in [(5u32, png::ColorType::Indexed), (300, png::ColorType::Rgb)] {
+            let (w, h) = (7usize, 50usize);
+            let rgb: Vec<u8> = (0..w * h)
+                .flat_map(|i| {
+                    let c = (i as u32 * 7) % colours;
+                    [(c % 256) as u8, (c / 256) as u8, 9]
+                })
+                .collect();
+            write_rgb_png(&p, &rgb, w, h, 2).unwrap();
+            let mut dec = png::Decoder::new(File::open(&p).unwrap());
+            dec.set_transformations(png::Transformations::EXPAND);
+            let mut r = dec.read_info().unwrap();
+            assert_eq!(r.info().color_type, kind);
+            let mut buf = vec![0; r.output_buffer_size()];
+            r.next_frame(&mut buf).unwrap();
+            for y in 0..2 * h {
+                for x in 0..2 * w {
+                    let (a, b) = ((y * 2 * w + x) * 3, ((y / 2) * w + x / 2) * 3);
+                    assert_eq!(buf[a..a + 3], rgb[b..b + 3], "({x}, {y})");
+                }
+            }
+        }
         std::fs::remove_dir_all(dir).ok();
     }
 }

@@ -32,8 +32,8 @@ fn mesh_data(m: pbuffer::obj::ObjMesh<f64>) -> MeshData {
     }
 }
 
-/// The workspace root (the parent of `host_tests/`), where `../shared/` and `docs/` are
-/// found relative to.
+/// The workspace root (the parent of `host_tests/`), where `models/`, `docs/` and (for
+/// the tests) `../shared/` are found relative to.
 pub fn workspace_root() -> PathBuf {
     let manifest = Path::new(env!("CARGO_MANIFEST_DIR"));
     manifest.parent().unwrap_or(manifest).to_path_buf()
@@ -61,11 +61,16 @@ pub fn builtin_cube() -> MeshData {
     MeshData { vertices, faces }
 }
 
+/// The default model of the `render` and `viewer` commands: the repository's
+/// `models/suzanne.obj`, found from the workspace root wherever the command runs.
+pub fn default_model() -> PathBuf {
+    workspace_root().join("models").join("suzanne.obj")
+}
+
 /// The scene of the `render` and `viewer` commands and the name to report it by: the
-/// given file, else `../shared/models/suzanne.obj` (from the workspace root), else the
-/// built-in cube when that file is missing, so both commands show the same default.
+/// given file, else [`default_model`], so both commands show the same default. A
+/// default model that cannot be read is an error, as any other file.
 pub fn load_scene(path: Option<&Path>) -> Result<(MeshData, String), String> {
-    let default_model = workspace_root().join("../shared/models/suzanne.obj");
     match path {
         Some(p) if p.to_string_lossy().starts_with("scene:") => {
             let name = p.to_string_lossy()["scene:".len()..].to_string();
@@ -83,11 +88,11 @@ pub fn load_scene(path: Option<&Path>) -> Result<(MeshData, String), String> {
                 })
         }
         Some(p) => Ok((load_obj(p)?, p.display().to_string())),
-        None if default_model.exists() => Ok((
-            load_obj(&default_model)?,
-            default_model.display().to_string(),
-        )),
-        None => Ok((builtin_cube(), "built-in cube".to_string())),
+        None => {
+            let p = default_model();
+            let mesh = load_obj(&p).map_err(|e| format!("{e} (the default model)"))?;
+            Ok((mesh, p.display().to_string()))
+        }
     }
 }
 

@@ -104,7 +104,7 @@ pub fn stack_peak() -> usize {
 }
 
 /// SysTick on the core clock, free running: with `-icount shift=0` it advances once per
-/// 40 instructions on the mps2 boards (../shared/FIRMWARE.md), once per 62.5 on the
+/// 40 instructions on the mps2 boards (docs/firmware.md), once per 62.5 on the
 /// micro:bit ([`PER_TICK`]).
 pub struct Counter {
     syst: SYST,

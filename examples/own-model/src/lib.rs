@@ -7,7 +7,7 @@
 
 use embedded_graphics::pixelcolor::BinaryColor;
 use embedded_graphics::prelude::DrawTarget;
-use pbuffer::{BakedDrawing, Camera, Error, FrameRows, Stats};
+use pbuffer::prelude::*;
 
 /// The bracket as `build.rs` baked it: `BRACKET_V`, `BRACKET_F`, `BRACKET_E`, the
 /// statics and `bracket_baked()`.

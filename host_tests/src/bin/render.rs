@@ -8,9 +8,9 @@
 //! cargo run --release -p host_tests --bin render -- [SCENE.obj] [flags]   (--help lists them)
 //! ```
 //!
-//! Without SCENE it renders `../shared/models/suzanne.obj` (relative to the workspace
-//! root), or a built-in cube when that file is missing, to `target/render.png` (outside the tracked tree), and prints
-//! the figures of the frame.
+//! Without SCENE it renders the repository's `models/suzanne.obj` (found from the
+//! workspace root) to `target/render.png` (outside the tracked tree), and prints the
+//! figures of the frame; a missing default model is an error (exit 2), as any file.
 //!
 //! Exit status: 0 on success; 2 on bad input (unreadable file, malformed OBJ, bad flag
 //! or value, a camera or mesh the library rejects), with one line on stderr that names

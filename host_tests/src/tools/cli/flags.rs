@@ -36,8 +36,8 @@ exit status: 0 ok, 2 bad input (file, OBJ, flag or value), 1 rendering failed";
     args_override_self = true
 )]
 pub struct Flags {
-    /// Wavefront OBJ (v and f lines); without it: ../shared/models/suzanne.obj
-    /// (or a built-in cube), written to target/render.png, stats printed;
+    /// Wavefront OBJ (v and f lines); without it: the repository's
+    /// models/suzanne.obj, written to target/render.png, stats printed;
     /// scene:NAME renders a procedural test scene (cube, boxes, icosphere,
     /// torus, gear, frame, cyclic, coplanar); a .scene file lists posed
     /// parts, one a line: PATH [tx ty tz [rx ry rz]] (path relative to the

@@ -9,7 +9,7 @@ use crate::schemes::SchemeSpec;
 /// Everything the command line says.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Options {
-    /// The scene: an OBJ file or `scene:NAME` (none: suzanne or the built-in cube).
+    /// The scene: an OBJ file or `scene:NAME` (none: the repository's models/suzanne.obj).
     pub scene: Option<PathBuf>,
     /// `--fit`: frame the whole model.
     pub fit: bool,
