@@ -21,18 +21,19 @@
 //!
 //! [`BakedSource`]: crate::render::BakedSource
 
+pub(crate) mod ram;
+
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::pixelcolor::BinaryColor;
 
-use crate::error::need;
 use crate::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
 use crate::render::{
     BakedMesh, CompactEdge, FacePlane, FaceViews, FastRenderer, FastVertex, FastWorkspace,
     FrameNeeds, FrameProbe, MonoPalette, OneMesh, Settings, Stats,
 };
 use crate::subpixel::U4;
-use crate::Capacity;
 use crate::{Camera, Error, FillSolid, SpanSink, Viewport};
+use crate::{Capacity, Shortfalls};
 
 /// `Default` is `new()` for a drawing of any sizes.
 macro_rules! default_is_new {
@@ -103,7 +104,7 @@ pub struct Drawing<
 
 /// What [`Drawing::bake`] learnt.
 #[derive(Debug, Clone, Copy)]
-struct Baked<'m> {
+pub(crate) struct Baked<'m> {
     mesh: Mesh<'m>,
     edges: usize,
 }
@@ -140,13 +141,20 @@ impl<
     /// Bakes `mesh` (its edges found with creases past [`CREASE_DEG`], then
     /// [`BakedMesh::bake`]) and keeps it for [`draw`](Self::draw). Too few vertices,
     /// faces or edges is `CapacityExceeded` naming the parameter's size needed
-    /// (for `E`, the larger of the unique edges and half the corners); on any error
-    /// nothing stays baked.
+    /// (for `E`, the larger of the unique edges and half the corners), or
+    /// `CapacitiesExceeded` naming every one of `V`, `F` and `E` that is short,
+    /// all in one error. The unique edges are counted once `V` and half the
+    /// corners fit; until then `E` is listed as needing at least half the corners
+    /// ([`Shortfall::at_least`](crate::Shortfall::at_least)). On any error nothing
+    /// stays baked.
     pub fn bake(&mut self, mesh: Mesh<'m>) -> Result<(), Error> {
         self.baked = None;
-        need(Capacity::Vertices, mesh.vertices().len(), V)?;
-        need(Capacity::Faces, mesh.face_count(), F)?;
-        need(Capacity::Edges, mesh.indices().len().div_ceil(2), E)?;
+        let mut short = Shortfalls::new();
+        short.check(Capacity::Vertices, mesh.vertices().len(), V);
+        short.check(Capacity::Faces, mesh.face_count(), F);
+        let half_corners = mesh.indices().len().div_ceil(2);
+        short.check_at_least(Capacity::Edges, half_corners, E, true);
+        short.into_result()?;
         let adjacency = EdgeAdjacency::build(
             &mesh,
             CREASE_DEG,
@@ -174,7 +182,8 @@ impl<
     /// ([`DrawTarget::fill_solid`]). Nothing baked is `Err(NothingBaked)`. More
     /// facets or lines active on a row than `FACETS` or `LINES`, or more clipped
     /// corners than [`CLIPPED_CORNERS`], is `CapacityExceeded` with the frame's
-    /// true need (its peak, counted on past the limit), and no frame.
+    /// true need (its peak, counted on past the limit), and no frame; two or
+    /// three of them short is `CapacitiesExceeded`, naming each with its need.
     pub fn draw<D: DrawTarget<Color = BinaryColor>, const W: usize, const H: usize>(
         &mut self,
         camera: &Camera,
@@ -297,13 +306,16 @@ impl<
     }
 
     /// Keeps `mesh` for [`draw`](Self::draw). More vertices, faces or edges than
-    /// `V`, `F` or `E` is `CapacityExceeded` naming the size needed, and then no mesh
-    /// is kept.
+    /// `V`, `F` or `E` is `CapacityExceeded` naming the size needed (two or three
+    /// of them short: `CapacitiesExceeded`, naming each), and then no mesh is
+    /// kept.
     pub fn set_mesh(&mut self, mesh: BakedMesh<'m>) -> Result<(), Error> {
         self.mesh = None;
-        need(Capacity::Vertices, mesh.mesh().vertices().len(), V)?;
-        need(Capacity::Faces, mesh.mesh().face_count(), F)?;
-        need(Capacity::Edges, mesh.edges().len(), E)?;
+        let mut short = Shortfalls::new();
+        short.check(Capacity::Vertices, mesh.mesh().vertices().len(), V);
+        short.check(Capacity::Faces, mesh.mesh().face_count(), F);
+        short.check(Capacity::Edges, mesh.edges().len(), E);
+        short.into_result()?;
         self.mesh = Some(mesh);
         Ok(())
     }
@@ -563,13 +575,20 @@ impl<const W: usize, const H: usize> FrameRows<W, H> {
         }
     }
 
-    /// Is a frame of `viewport` in reach? `CapacityExceeded` names the first of
-    /// `W`, `H` and the line masks' `H` (two words per 32 columns) that is short.
+    /// Is a frame of `viewport` in reach? `CapacityExceeded` (or
+    /// `CapacitiesExceeded`) names each of `W`, `H` and the line masks' `H` (two
+    /// words per 32 columns) that is short.
     fn fit(&self, viewport: Viewport) -> Result<(), Error> {
-        let width = usize::from(viewport.width);
-        need(Capacity::RowWidth, width, W)?;
-        need(Capacity::Rows, usize::from(viewport.height), H)?;
-        need(Capacity::LineMasks, 2 * width.div_ceil(32), H)
+        let (width, height) = (usize::from(viewport.width), usize::from(viewport.height));
+        let masks = 2 * width.div_ceil(32);
+        if width <= W && height <= H && masks <= H {
+            return Ok(());
+        }
+        let mut short = Shortfalls::new();
+        short.check(Capacity::RowWidth, width, W);
+        short.check(Capacity::Rows, height, H);
+        short.check(Capacity::LineMasks, masks, H);
+        short.into_result()
     }
 }
 
