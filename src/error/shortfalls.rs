@@ -53,11 +53,31 @@ impl fmt::Display for Shortfall {
 ///     capacity 8; mesh faces (F): 5804 needed, capacity 6");
 /// assert_eq!(e.shortfalls().len(), 2);
 /// ```
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Shortfalls {
     items: [Shortfall; MAX_SHORTFALLS],
     len: u8,
+}
+
+/// The listed shortfalls only.
+impl fmt::Debug for Shortfalls {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_list().entries(self.as_slice()).finish()
+    }
+}
+
+/// The same shortfalls in the same order.
+impl PartialEq for Shortfalls {
+    fn eq(&self, other: &Self) -> bool {
+        self.as_slice() == other.as_slice()
+    }
+}
+
+impl core::hash::Hash for Shortfalls {
+    fn hash<H: core::hash::Hasher>(&self, state: &mut H) {
+        self.as_slice().hash(state);
+    }
 }
 
 impl Default for Shortfalls {
