@@ -131,7 +131,7 @@ impl BakeOptions {
         };
         let engine = FastRenderer::<U4, 0, 0>::new();
         let mut frames = FrameNeeds::default();
-        for camera in self.cameras(&mesh)? {
+        for camera in self.cameras(mesh)? {
             let one = engine.needs(baked, &camera, &DEFAULT_SETTINGS, &mut ws, viewport)?;
             frames = frames.max(one);
         }
@@ -419,6 +419,35 @@ mod tests {
         ] {
             assert!(s.lines().any(|l| l == line), "{line} missing in\n{s}");
         }
+    }
+
+    #[test]
+    fn facets_and_lines_are_the_peaks_over_the_stated_views() {
+        let model = obj::parse(CUBE, "cube.obj").unwrap();
+        let mesh = model.mesh().unwrap();
+        let views = BakeOptions {
+            width: 128,
+            height: 64,
+            views: 8,
+        };
+        let s = mesh_to_rust_with(&mesh, "CUBE", "cube.obj", &views).unwrap();
+        // What a drawing measures over the same cameras.
+        let mut drawing = crate::Drawing::<8, 6, 12>::new();
+        drawing.bake(mesh).unwrap();
+        let cameras = views.cameras(&mesh).unwrap();
+        assert_eq!(cameras.len(), 8);
+        let viewport = Viewport::new(128, 64).unwrap();
+        let mut rows = crate::FrameRows::<128, 64>::new();
+        let needs = drawing.measure(&cameras, &mut rows, viewport).unwrap();
+        for line in [
+            format!("pub const CUBE_FACETS: usize = {};", needs.facets),
+            format!("pub const CUBE_LINES: usize = {};", needs.lines),
+            "/// each fitted to a 128 x 64 frame (`pbuffer::bake::BakeOptions`), default settings."
+                .to_string(),
+        ] {
+            assert!(s.lines().any(|l| l == line), "{line} missing in\n{s}");
+        }
+        assert!(needs.facets > 0 && needs.lines > 0);
     }
 
     #[test]

@@ -593,36 +593,4 @@ impl<const W: usize, const H: usize> FrameRows<W, H> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// A square: 4 vertices, 1 face, 4 edges (half its 4 corners: 2).
-    fn square() -> Mesh<'static> {
-        const V: [[f32; 3]; 4] = [
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [1.0, 1.0, 0.0],
-            [0.0, 1.0, 0.0],
-        ];
-        Mesh::new(&V, &[0, 1, 2, 3], &[0, 4]).unwrap()
-    }
-
-    fn short(what: Capacity, needed: usize, capacity: usize) -> Result<(), Error> {
-        Err(Error::CapacityExceeded {
-            what,
-            needed,
-            capacity,
-        })
-    }
-
-    #[test]
-    fn bake_names_the_parameter_that_is_short() {
-        let v = Drawing::<3, 1, 4>::new().bake(square());
-        assert_eq!(v, short(Capacity::Vertices, 4, 3));
-        let f = Drawing::<4, 0, 4>::new().bake(square());
-        assert_eq!(f, short(Capacity::Faces, 1, 0));
-        let e = Drawing::<4, 1, 3>::new().bake(square());
-        assert_eq!(e, short(Capacity::Edges, 4, 3));
-        assert_eq!(Drawing::<4, 1, 4>::new().bake(square()), Ok(()));
-    }
-}
+mod tests;

@@ -6,8 +6,9 @@ use core::fmt;
 use super::{Capacity, Error};
 
 /// The most shortfalls one [`Shortfalls`] holds: the mesh's `V`, `F`, `E` of a
-/// bake, or a frame's `FACETS`, `LINES` and clipped corners, with room to spare.
-pub const MAX_SHORTFALLS: usize = 6;
+/// bake, a frame's `FACETS`, `LINES` and clipped corners, a scene's `V`, `F`, `E`
+/// and `C`. Four keep [`Error`] as small as it was (48 bytes on a 64-bit host).
+pub const MAX_SHORTFALLS: usize = 4;
 
 /// One capacity that is too small: which, what the input needs and what is
 /// compiled in.
@@ -39,7 +40,7 @@ impl fmt::Display for Shortfall {
 
 /// The capacities of one input that are all too small, so that one run names every
 /// size to grow: what [`Error::CapacitiesExceeded`] carries. Fixed-size (at most
-/// [`MAX_SHORTFALLS`]), no allocation.
+/// [`MAX_SHORTFALLS`], needs kept in 32 bits), no allocation.
 ///
 /// ```
 /// use pbuffer::{Capacity, Error};
@@ -56,27 +57,35 @@ impl fmt::Display for Shortfall {
 #[derive(Clone, Copy, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Shortfalls {
-    items: [Shortfall; MAX_SHORTFALLS],
+    // Apart and in 32 bits (a need past `u32::MAX` saturates), so that an
+    // `Error` carrying them is no larger than before.
+    what: [Capacity; MAX_SHORTFALLS],
+    needed: [u32; MAX_SHORTFALLS],
+    capacity: [u32; MAX_SHORTFALLS],
+    /// Bit `k`: entry `k`'s need is a lower bound.
+    at_least: u8,
     len: u8,
 }
 
 /// The listed shortfalls only.
 impl fmt::Debug for Shortfalls {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.debug_list().entries(self.as_slice()).finish()
+        f.debug_list().entries(self.iter()).finish()
     }
 }
 
 /// The same shortfalls in the same order.
 impl PartialEq for Shortfalls {
     fn eq(&self, other: &Self) -> bool {
-        self.as_slice() == other.as_slice()
+        self.iter().eq(other.iter())
     }
 }
 
 impl core::hash::Hash for Shortfalls {
     fn hash<H: core::hash::Hasher>(&self, state: &mut H) {
-        self.as_slice().hash(state);
+        for item in self.iter() {
+            item.hash(state);
+        }
     }
 }
 
@@ -87,17 +96,13 @@ impl Default for Shortfalls {
 }
 
 impl Shortfalls {
-    const NONE: Shortfall = Shortfall {
-        what: Capacity::Vertices,
-        needed: 0,
-        capacity: 0,
-        at_least: false,
-    };
-
     /// None yet.
     pub const fn new() -> Self {
         Self {
-            items: [Self::NONE; MAX_SHORTFALLS],
+            what: [Capacity::Vertices; MAX_SHORTFALLS],
+            needed: [0; MAX_SHORTFALLS],
+            capacity: [0; MAX_SHORTFALLS],
+            at_least: 0,
             len: 0,
         }
     }
@@ -119,26 +124,34 @@ impl Shortfalls {
         if needed <= capacity {
             return;
         }
-        let item = Shortfall {
-            what,
-            needed,
-            capacity,
-            at_least,
-        };
-        if let Some(slot) = self.items.get_mut(usize::from(self.len)) {
-            *slot = item;
+        let k = usize::from(self.len);
+        let narrow = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
+        if let (Some(w), Some(n), Some(c)) = (
+            self.what.get_mut(k),
+            self.needed.get_mut(k),
+            self.capacity.get_mut(k),
+        ) {
+            (*w, *n, *c) = (what, narrow(needed), narrow(capacity));
+            self.at_least |= u8::from(at_least) << k;
             self.len += 1;
         }
     }
 
     /// The shortfalls, in the order they were found.
-    pub fn as_slice(&self) -> &[Shortfall] {
-        self.items.get(..usize::from(self.len)).unwrap_or(&[])
+    pub fn iter(&self) -> impl Iterator<Item = Shortfall> + '_ {
+        (0..self.len()).filter_map(move |k| {
+            Some(Shortfall {
+                what: *self.what.get(k)?,
+                needed: *self.needed.get(k)? as usize,
+                capacity: *self.capacity.get(k)? as usize,
+                at_least: self.at_least & (1 << k) != 0,
+            })
+        })
     }
 
     /// How many.
     pub fn len(&self) -> usize {
-        self.as_slice().len()
+        usize::from(self.len).min(MAX_SHORTFALLS)
     }
 
     /// None listed?
@@ -148,15 +161,16 @@ impl Shortfalls {
 
     /// The one for `what`, if it is short.
     pub fn get(&self, what: Capacity) -> Option<Shortfall> {
-        self.as_slice().iter().copied().find(|s| s.what == what)
+        self.iter().find(|s| s.what == what)
     }
 
     /// `Ok` when nothing is short; one shortfall is the familiar
     /// [`Error::CapacityExceeded`]; two or more are [`Error::CapacitiesExceeded`].
     pub fn into_result(self) -> Result<(), Error> {
-        match self.as_slice() {
-            [] => Ok(()),
-            [one] => Err(Error::CapacityExceeded {
+        let mut all = self.iter();
+        match (all.next(), all.next()) {
+            (None, _) => Ok(()),
+            (Some(one), None) => Err(Error::CapacityExceeded {
                 what: one.what,
                 needed: one.needed,
                 capacity: one.capacity,
@@ -185,7 +199,7 @@ impl Shortfalls {
 impl fmt::Display for Shortfalls {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str("capacities too small: ")?;
-        for (k, item) in self.as_slice().iter().enumerate() {
+        for (k, item) in self.iter().enumerate() {
             if k > 0 {
                 f.write_str("; ")?;
             }

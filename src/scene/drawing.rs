@@ -16,6 +16,7 @@ use heapless::Vec;
 use super::Pose;
 use crate::bits::set_bit;
 use crate::drawing::{FrameBuffers, DEFAULT_PALETTE, DEFAULT_SETTINGS};
+use crate::error::need;
 use crate::mesh::{EdgeKind, Mesh, Viewpoint};
 use crate::render::{
     faces_view, BakedMesh, CompactEdge, FacePlane, FrameNeeds, FrameProbe, InstanceViews,
@@ -171,25 +172,26 @@ impl<
     /// faces of those before it) and returns its number. More instances than `N`,
     /// or a union of more vertices, faces, edges or corner indices and face starts
     /// than `V`, `F`, `E`, `C`, is `CapacityExceeded` with the size needed (two or
-    /// more short: `CapacitiesExceeded`, naming each); more
+    /// more of `V`, `F`, `E`, `C` short: `CapacitiesExceeded`, naming each); more
     /// than [`MAX_FAST_FACES`] vertices or faces is `TooManyFaces`. On an error
     /// the scene is as it was.
     pub fn add(&mut self, mesh: BakedMesh<'m>, pose: Pose) -> Result<usize, Error> {
         let inner = mesh.mesh();
         let u = self.union;
-        let mut short = Shortfalls::new();
-        short.check(Capacity::Instances, self.instances.len() + 1, N);
+        let instances = self.instances.len() + 1;
+        need(Capacity::Instances, instances, N)?;
         let (vertices, faces) = (
             u.vertices + inner.vertices().len(),
             u.faces + inner.face_count(),
         );
         let most = vertices.max(faces);
-        if most > MAX_FAST_FACES && short.is_empty() {
+        if most > MAX_FAST_FACES {
             return Err(Error::TooManyFaces {
                 faces: most,
                 max: MAX_FAST_FACES,
             });
         }
+        let mut short = Shortfalls::new();
         short.check(Capacity::Vertices, vertices, V);
         short.check(Capacity::Faces, faces, F);
         short.check(Capacity::Edges, u.edges + mesh.edges().len(), E);

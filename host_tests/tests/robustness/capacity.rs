@@ -73,7 +73,11 @@ fn drawing_needed_is_the_real_need_on_cow() {
     // The defaults: both tables are short, and one error says by how much each
     // (issue 50: it used to name only the facets, which ran out first).
     assert_eq!(
-        draw::<32, 32>().unwrap_err().shortfalls().as_slice(),
+        draw::<32, 32>()
+            .unwrap_err()
+            .shortfalls()
+            .iter()
+            .collect::<Vec<_>>(),
         [
             short(Capacity::ActiveFacets, FACETS_NEEDED, 32),
             short(Capacity::ActiveLines, LINES_NEEDED, 32),
@@ -145,7 +149,7 @@ fn measure_tells_every_size_of_a_drawing_at_once() {
     let mut fb = Frame::new();
     let drawn = cow.draw(&camera(), &mut rows, &mut fb);
     assert_eq!(
-        drawn.unwrap_err().shortfalls().as_slice(),
+        drawn.unwrap_err().shortfalls().iter().collect::<Vec<_>>(),
         [
             short(Capacity::ActiveFacets, FACETS_NEEDED, 1),
             short(Capacity::ActiveLines, LINES_NEEDED, 1),
