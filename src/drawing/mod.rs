@@ -5,8 +5,10 @@
 //! with the mesh; [`FrameRows`] keeps those that grow with the display. Both are
 //! sized by const generics, zero-initialised by a `const fn new`, and can live in
 //! `static`s. Too small a size is [`Error::CapacityExceeded`] naming the parameter
-//! ([`Capacity`]) and the size needed, never a truncated picture;
-//! [`Drawing::measure`] tells every size a mesh and its views need at once.
+//! ([`Capacity`]) and the size needed, never a truncated picture; several too
+//! small at once are one [`Error::CapacitiesExceeded`] naming each;
+//! [`Drawing::measure`] tells every size a mesh and its views need at once, and
+//! [`ram`](crate::ram) what they cost.
 //!
 //! What the short form costs against the long one ([`FastRenderer`] with a
 //! [`FastWorkspace`] sized by hand and the constants baked on the host):
