@@ -30,7 +30,8 @@
 //! pbuffer::bake::obj_to_rust("models/part.obj", "PART", out.join("part.rs"))
 //!     .unwrap_or_else(|e| panic!("{e}"));
 //! // src/main.rs: include!(concat!(env!("OUT_DIR"), "/part.rs"));
-//! // and `BakedDrawing::<PART_V, PART_F, PART_E, PART_FACETS, PART_LINES>::with_mesh(part_baked()?)`
+//! // and `BakedDrawing::<PART_V, PART_F, PART_E, PART_FACETS, PART_LINES>`
+//! // `::with_mesh(part_baked()?)`
 //! ```
 
 use core::fmt::{self, Write as _};

@@ -78,9 +78,10 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
     /// `error` from [`render`](Self::render), with the frame's true need when it is
     /// one of the tables [`needs`](Self::needs) counts (active facets, active lines,
     /// clipped corners), and every other of those tables the frame overflows too
-    /// (then `CapacitiesExceeded`, naming each): the short API's errors. Kept out of `render`, whose row loop
-    /// reports only that a table is full: counting there cost the Cortex-M4 frame
-    /// 2.5 % (its inputs stayed alive across the loop).
+    /// (then `CapacitiesExceeded`, naming each): the short API's errors. Kept out
+    /// of `render`, whose row loop reports only that a table is full: counting
+    /// there cost the Cortex-M4 frame 2.5 % (its inputs stayed alive across the
+    /// loop).
     #[cold]
     #[inline(never)]
     pub fn with_true_need<T>(
