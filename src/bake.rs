@@ -14,6 +14,13 @@
 //! - `PART_PLANAR`: which faces are planar (for [`Mesh::with_planar_faces`]);
 //! - `PART_PLANES`, `PART_EDGES`: the fast engine's constants ([`BakedMesh::bake`],
 //!   printed by [`BakedSource`]);
+//! - `PART_FACETS`, `PART_LINES`: the facets and feature lines active on one row
+//!   at most over the bake's views ([`BakeOptions`]: by default 24 directions
+//!   around the vertical axis at [`Camera::fit`]'s elevation, each fitted to a
+//!   400 x 240 frame, with the default settings), for the `FACETS` and `LINES` of
+//!   a [`BakedDrawing`](crate::BakedDrawing). They hold for those views only:
+//!   another view, size or setting may need more, and then the draw's error
+//!   names the need ([`Error::CapacitiesExceeded`]);
 //! - `fn part_baked() -> Result<BakedMesh<'static>, pbuffer::Error>`: all of it
 //!   checked once ([`BakedMesh::new`]), ready to draw.
 //!
@@ -23,17 +30,117 @@
 //! pbuffer::bake::obj_to_rust("models/part.obj", "PART", out.join("part.rs"))
 //!     .unwrap_or_else(|e| panic!("{e}"));
 //! // src/main.rs: include!(concat!(env!("OUT_DIR"), "/part.rs"));
-//! // and `BakedDrawing::<PART_V, PART_F, PART_E>::with_mesh(part_baked()?)`
+//! // and `BakedDrawing::<PART_V, PART_F, PART_E, PART_FACETS, PART_LINES>`
+//! // `::with_mesh(part_baked()?)`
 //! ```
 
 use core::fmt::{self, Write as _};
 use std::path::Path;
 
+use crate::drawing::{FrameBuffers, DEFAULT_SETTINGS};
 use crate::mesh::{planar_words, EdgeAdjacency, HalfEdgeRecord, MeshEdge};
 use crate::obj::{self, ObjError};
 use crate::order::planar_faces;
-use crate::render::{BakedMesh, BakedSource, CompactEdge, FacePlane};
-use crate::{Error, Mesh, CREASE_DEG};
+use crate::render::{
+    BakedMesh, BakedSource, CompactEdge, FacePlane, FastRenderer, FastVertex, FastWorkspace,
+    FrameNeeds,
+};
+use crate::subpixel::U4;
+use crate::{
+    Camera, DrawingNeeds, Error, Mesh, Viewport, CLIPPED_CORNERS, CREASE_DEG, FIT_FOV_DEG,
+    FIT_VIEW_DIRECTION,
+};
+
+/// The views the bake sizes `NAME_FACETS` and `NAME_LINES` for: `views`
+/// directions around the vertical axis, the first [`FIT_VIEW_DIRECTION`] (the
+/// view of [`Camera::fit`]) and the others turned from it by equal steps at the
+/// same elevation, each [`Camera::fit_along`] the mesh in a `width` x `height`
+/// frame, drawn with the default [`Settings`](crate::Settings) (dashed hidden
+/// lines, as a [`BakedDrawing`](crate::BakedDrawing) draws).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct BakeOptions {
+    /// Frame width, pixels (default 400).
+    pub width: u16,
+    /// Frame height, pixels (default 240).
+    pub height: u16,
+    /// Directions around the vertical axis (default 24; 0 is taken as 1).
+    pub views: u16,
+}
+
+impl Default for BakeOptions {
+    fn default() -> Self {
+        Self {
+            width: 400,
+            height: 240,
+            views: 24,
+        }
+    }
+}
+
+impl BakeOptions {
+    /// The cameras of these views of `mesh` (see [`BakeOptions`]).
+    pub fn cameras(&self, mesh: &Mesh<'_>) -> Result<Vec<Camera>, Error> {
+        let n = self.views.max(1);
+        let [x, y, z] = FIT_VIEW_DIRECTION;
+        (0..n)
+            .map(|k| {
+                let turn = core::f32::consts::TAU * f32::from(k) / f32::from(n);
+                let (sin, cos) = turn.sin_cos();
+                let direction = [x * cos + z * sin, y, z * cos - x * sin];
+                let (w, h) = (u32::from(self.width), u32::from(self.height));
+                Camera::fit_along(mesh, w, h, direction, FIT_FOV_DEG)
+            })
+            .collect()
+    }
+
+    /// Every size a [`BakedDrawing`](crate::BakedDrawing) (or a
+    /// [`Drawing`](crate::Drawing)) and its [`FrameRows`](crate::FrameRows) need
+    /// to draw `baked` in these views, as [`Drawing::measure`](crate::Drawing::measure)
+    /// counts them, with buffers of any size made here.
+    pub fn needs(&self, baked: &BakedMesh<'_>) -> Result<DrawingNeeds, Error> {
+        let viewport = Viewport {
+            width: self.width,
+            height: self.height,
+        };
+        let mesh = baked.mesh();
+        let (v, f, e) = (
+            mesh.vertices().len(),
+            mesh.face_count(),
+            baked.edges().len(),
+        );
+        let (w, h) = (usize::from(self.width), usize::from(self.height));
+        let mut vertices = vec![FastVertex::ZERO; v];
+        let mut facing = vec![0u32; f.div_ceil(32)];
+        let (mut face_links, mut slopes) = (vec![0u16; f], vec![0u16; f]);
+        let mut line_links = vec![0u16; e];
+        let mut heads = vec![0u16; 2 * h];
+        let mut row = vec![0u32; w];
+        let mut masks = vec![0u32; 3 * w.div_ceil(32)];
+        let mut pool = vec![FastVertex::ZERO; CLIPPED_CORNERS];
+        let mut ws = FastWorkspace {
+            vertices: &mut vertices,
+            facing: &mut facing,
+            face_links: &mut face_links,
+            line_links: &mut line_links,
+            heads: &mut heads,
+            row: &mut row,
+            masks: &mut masks,
+            pool: &mut pool,
+            ids: &mut [],
+            slopes: &mut slopes,
+            phases: &mut [],
+        };
+        let engine = FastRenderer::<U4, 0, 0>::new();
+        let mut frames = FrameNeeds::default();
+        for camera in self.cameras(mesh)? {
+            let one = engine.needs(baked, &camera, &DEFAULT_SETTINGS, &mut ws, viewport)?;
+            frames = frames.max(one);
+        }
+        Ok(FrameBuffers::<0, 0, 0, 0, 0>::sizes(
+            baked, frames, viewport,
+        ))
+    }
+}
 
 /// Why a bake failed. Displays as one line naming the file (and the line, for the
 /// OBJ's own errors), fit for a build script's `panic!("{e}")`.
@@ -84,13 +191,25 @@ impl From<ObjError> for BakeError {
 }
 
 /// Reads the OBJ file `obj`, bakes it and writes the Rust source of the statics
-/// named `NAME_...` (see the [module](self)) to `out`; prints
+/// named `NAME_...` (see the [module](self)) to `out`, with `NAME_FACETS` and
+/// `NAME_LINES` for the default [`BakeOptions`] (400 x 240, 24 views); prints
 /// `cargo:rerun-if-changed` for `obj`, so the build script reruns when the model
 /// changes. Returns the source written.
 pub fn obj_to_rust(
     obj: impl AsRef<Path>,
     name: &str,
     out: impl AsRef<Path>,
+) -> Result<String, BakeError> {
+    obj_to_rust_with(obj, name, out, &BakeOptions::default())
+}
+
+/// [`obj_to_rust`] with `NAME_FACETS` and `NAME_LINES` sized for the views of
+/// `options` (the display's size, say).
+pub fn obj_to_rust_with(
+    obj: impl AsRef<Path>,
+    name: &str,
+    out: impl AsRef<Path>,
+    options: &BakeOptions,
 ) -> Result<String, BakeError> {
     let (obj, out) = (obj.as_ref(), out.as_ref());
     println!("cargo:rerun-if-changed={}", obj.display());
@@ -100,7 +219,7 @@ pub fn obj_to_rust(
         file: file.clone(),
         error,
     })?;
-    let source = mesh_to_rust(&mesh, name, &file)?;
+    let source = mesh_to_rust_with(&mesh, name, &file, options)?;
     std::fs::write(out, &source).map_err(|e| BakeError::Write {
         file: out.display().to_string(),
         why: e.to_string(),
@@ -111,6 +230,17 @@ pub fn obj_to_rust(
 /// The Rust source of [`obj_to_rust`] for a mesh already in memory; `origin` names
 /// where it came from (in the generated comment and in errors).
 pub fn mesh_to_rust(mesh: &Mesh<'_>, name: &str, origin: &str) -> Result<String, BakeError> {
+    mesh_to_rust_with(mesh, name, origin, &BakeOptions::default())
+}
+
+/// [`mesh_to_rust`] with `NAME_FACETS` and `NAME_LINES` sized for the views of
+/// `options`.
+pub fn mesh_to_rust_with(
+    mesh: &Mesh<'_>,
+    name: &str,
+    origin: &str,
+    options: &BakeOptions,
+) -> Result<String, BakeError> {
     let mut bytes = name.bytes();
     let upper = |b: u8| b.is_ascii_uppercase() || b.is_ascii_digit() || b == b'_';
     if !bytes.next().is_some_and(|b| b.is_ascii_uppercase()) || !bytes.all(upper) {
@@ -131,9 +261,14 @@ pub fn mesh_to_rust(mesh: &Mesh<'_>, name: &str, origin: &str) -> Result<String,
     let mut planes = vec![FacePlane::default(); mesh.face_count()];
     let mut edges = vec![CompactEdge::EMPTY; adjacency.edges().len()];
     BakedMesh::bake(mesh, &adjacency, &mut planes, &mut edges).map_err(rejected)?;
+    // Sized as `NAME_baked()` draws: with the planarity bits.
+    let drawn = mesh.with_planar_faces(&planar).map_err(rejected)?;
+    let baked = BakedMesh::new(drawn, &planes, &edges).map_err(rejected)?;
+    let needs = options.needs(&baked).map_err(rejected)?;
     let mut s = String::new();
     // Writing to a String cannot fail.
     let _ = write_source(&mut s, name, origin, mesh, adjacency.edges(), &planar);
+    let _ = write_peaks(&mut s, name, &needs, options);
     let _ = write!(
         s,
         "{}",
@@ -144,6 +279,35 @@ pub fn mesh_to_rust(mesh: &Mesh<'_>, name: &str, origin: &str) -> Result<String,
         }
     );
     Ok(s)
+}
+
+/// `NAME_FACETS` and `NAME_LINES`, with the views they hold for.
+fn write_peaks(
+    s: &mut String,
+    name: &str,
+    needs: &DrawingNeeds,
+    options: &BakeOptions,
+) -> fmt::Result {
+    let views = format!(
+        "over {} views turned about the vertical axis at `Camera::fit`'s elevation,\n\
+         /// each fitted to a {} x {} frame (`pbuffer::bake::BakeOptions`), default settings.\n\
+         /// Other views or sizes may need more: then the draw's error names the need.",
+        options.views.max(1),
+        options.width,
+        options.height
+    );
+    writeln!(
+        s,
+        "/// Facets active on one row at most (`FACETS`), {views}\n\
+         pub const {name}_FACETS: usize = {};",
+        needs.facets
+    )?;
+    writeln!(
+        s,
+        "/// Feature lines active on one row at most (`LINES`), {views}\n\
+         pub const {name}_LINES: usize = {};",
+        needs.lines
+    )
 }
 
 /// Everything but the fast engine's constants ([`BakedSource`] prints those).
@@ -256,6 +420,35 @@ mod tests {
         ] {
             assert!(s.lines().any(|l| l == line), "{line} missing in\n{s}");
         }
+    }
+
+    #[test]
+    fn facets_and_lines_are_the_peaks_over_the_stated_views() {
+        let model = obj::parse(CUBE, "cube.obj").unwrap();
+        let mesh = model.mesh().unwrap();
+        let views = BakeOptions {
+            width: 128,
+            height: 64,
+            views: 8,
+        };
+        let s = mesh_to_rust_with(&mesh, "CUBE", "cube.obj", &views).unwrap();
+        // What a drawing measures over the same cameras.
+        let mut drawing = crate::Drawing::<8, 6, 12>::new();
+        drawing.bake(mesh).unwrap();
+        let cameras = views.cameras(&mesh).unwrap();
+        assert_eq!(cameras.len(), 8);
+        let viewport = Viewport::new(128, 64).unwrap();
+        let mut rows = crate::FrameRows::<128, 64>::new();
+        let needs = drawing.measure(&cameras, &mut rows, viewport).unwrap();
+        for line in [
+            format!("pub const CUBE_FACETS: usize = {};", needs.facets),
+            format!("pub const CUBE_LINES: usize = {};", needs.lines),
+            "/// each fitted to a 128 x 64 frame (`pbuffer::bake::BakeOptions`), default settings."
+                .to_string(),
+        ] {
+            assert!(s.lines().any(|l| l == line), "{line} missing in\n{s}");
+        }
+        assert!(needs.facets > 0 && needs.lines > 0);
     }
 
     #[test]

@@ -4,8 +4,10 @@ use core::convert::Infallible;
 use core::fmt;
 
 mod capacity;
+mod shortfalls;
 
 pub use capacity::Capacity;
+pub use shortfalls::{Shortfall, Shortfalls, MAX_SHORTFALLS};
 
 /// The largest supported target side, in pixels ([`Error::ViewportTooLarge`] beyond).
 pub const MAX_VIEWPORT: u32 = 8192;
@@ -38,6 +40,11 @@ pub enum Error<T = Infallible> {
         /// The compiled capacity.
         capacity: usize,
     },
+    /// Two or more fixed-capacity buffers are too small for this input, all named
+    /// at once with their needs, so that one run tells every size to grow (one
+    /// alone is [`CapacityExceeded`](Self::CapacityExceeded);
+    /// [`Error::shortfalls`] lists either).
+    CapacitiesExceeded(Shortfalls),
     /// The target is larger than [`MAX_VIEWPORT`] in some direction.
     ViewportTooLarge {
         /// Width of the target in pixels.
@@ -366,6 +373,7 @@ impl Error<Infallible> {
                 needed,
                 capacity,
             },
+            Error::CapacitiesExceeded(list) => Error::CapacitiesExceeded(list),
             Error::ViewportTooLarge { width, height } => Error::ViewportTooLarge { width, height },
             Error::NonFiniteVertex { vertex } => Error::NonFiniteVertex { vertex },
             Error::IndexOutOfRange { face, index } => Error::IndexOutOfRange { face, index },
@@ -405,6 +413,7 @@ impl<T: fmt::Debug> fmt::Display for Error<T> {
                 needed,
                 capacity,
             } => write!(f, "{what}: {needed} needed, capacity {capacity}"),
+            Error::CapacitiesExceeded(list) => write!(f, "{list}"),
             Error::ViewportTooLarge { width, height } => write!(
                 f,
                 "target of {width}x{height} pixels exceeds the {0}x{0} maximum",

@@ -111,7 +111,9 @@ mod vector;
 pub use camera::{Camera, Projection, FIT_FILL, FIT_FOV_DEG, FIT_VIEW_DIRECTION};
 pub use codes::SchemeViolation;
 pub use drawing::{BakedDrawing, Drawing, DrawingNeeds, FrameRows, CLIPPED_CORNERS, CREASE_DEG};
-pub use error::{CameraProblem, Capacity, EdgeProblem, Error};
+pub use error::{
+    CameraProblem, Capacity, EdgeProblem, Error, Shortfall, Shortfalls, MAX_SHORTFALLS,
+};
 pub use framebuffer::{packed_len, write_mask, PackedFramebuffer};
 pub use geometry::{ScreenPoint, Viewport, GUARD_BAND_PX, MAX_SUBPIXEL_BITS, MAX_VIEWPORT};
 pub use mesh::{
@@ -128,6 +130,14 @@ pub use scan::XorFiller;
 pub use scan::{FillRule, ScanConverter};
 pub use scene::{Pose, SceneDrawing};
 pub use span::{ContiguousRows, FillSolid, Span, SpanSink, ROW_SEGMENTS};
+
+/// The RAM of the short API's buffers for sizes known at run time: `const fn`s
+/// of the sizes, equal to `size_of` of [`Drawing`], [`BakedDrawing`] and
+/// [`FrameRows`] with those parameters (whose `RAM_BYTES` give it at compile time).
+pub mod ram {
+    pub use crate::drawing::ram::{baked_drawing_bytes, drawing_bytes, frame_rows_bytes};
+    pub use crate::render::fast_renderer_bytes;
+}
 
 /// The README's Rust blocks, compiled and run as doctests so that the guide cannot
 /// drift from the library.

@@ -63,7 +63,34 @@ impl Camera {
         direction_to_eye: [f32; 3],
         fov_y_deg: f32,
     ) -> Result<Self, Error> {
+        // Every corner of every face: a vertex seen twice changes no minimum or
+        // maximum, and a validated mesh has at least one face.
+        let used = mesh
+            .indices()
+            .iter()
+            .filter_map(|&i| mesh.vertices().get(i as usize).copied());
+        Self::fit_points_along(used, width, height, direction_to_eye, fov_y_deg)
+    }
+
+    /// [`fit_along`](Self::fit_along) framing `points` rather than a mesh's
+    /// vertices: every vertex of several parts, each where it stands (a
+    /// [`SceneDrawing`](crate::SceneDrawing)'s posed instances, say). A point seen
+    /// twice changes nothing; no points is `EmptyMesh`, a non-finite one
+    /// `NonFinite`.
+    pub fn fit_points_along(
+        points: impl Iterator<Item = [f32; 3]> + Clone,
+        width: u32,
+        height: u32,
+        direction_to_eye: [f32; 3],
+        fov_y_deg: f32,
+    ) -> Result<Self, Error> {
         let bad = |problem| Err(Error::BadCamera(problem));
+        if points.clone().next().is_none() {
+            return Err(Error::EmptyMesh);
+        }
+        if points.clone().flatten().any(|c| !c.is_finite()) {
+            return Err(Error::NonFinite);
+        }
         if !(fov_y_deg > 0.0 && fov_y_deg < 180.0) {
             return bad(CameraProblem::FovOutOfRange);
         }
@@ -81,13 +108,7 @@ impl Camera {
             1.0
         };
         let tan_v = tan(fov_y_deg * (core::f32::consts::PI / 360.0));
-        // Every corner of every face: a vertex seen twice changes no minimum or
-        // maximum, and a validated mesh has at least one face.
-        let used = || {
-            mesh.indices()
-                .iter()
-                .filter_map(|&i| mesh.vertices().get(i as usize).copied())
-        };
+        let used = || points.clone();
         let (c, r) = bounds(used());
         // The first guess: the bounding sphere fills FIT_FILL of the narrower field
         // of view (sin(atan(x)) = x / sqrt(1 + x^2)).

@@ -31,6 +31,7 @@ use embedded_graphics_core::pixelcolor::BinaryColor;
 use heapless::Vec;
 
 pub use compose::{FrameProbe, MonoPalette, Palette, SolidPalette};
+pub use engines::fast_renderer_bytes;
 #[doc(hidden)]
 pub use engines::span_kernel_twin_mismatches;
 pub(crate) use engines::{faces_view, FaceViews, InstanceViews, OneMesh};

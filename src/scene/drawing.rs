@@ -22,7 +22,10 @@ use crate::render::{
     faces_view, BakedMesh, CompactEdge, FacePlane, FrameNeeds, FrameProbe, InstanceViews,
     MonoPalette, Settings, Stats, MAX_FAST_FACES, MAX_HOLES, NO_HOLE,
 };
-use crate::{Camera, Capacity, DrawingNeeds, Error, FillSolid, FrameRows, SpanSink, Viewport};
+use crate::{
+    Camera, Capacity, DrawingNeeds, Error, FillSolid, FrameRows, Shortfalls, SpanSink, Viewport,
+    FIT_FOV_DEG, FIT_VIEW_DIRECTION,
+};
 
 /// One instance: a baked mesh and where it is.
 #[derive(Debug, Clone, Copy)]
@@ -168,13 +171,15 @@ impl<
     /// Adds `mesh` at `pose` as the next instance (its faces numbered after the
     /// faces of those before it) and returns its number. More instances than `N`,
     /// or a union of more vertices, faces, edges or corner indices and face starts
-    /// than `V`, `F`, `E`, `C`, is `CapacityExceeded` with the size needed; more
+    /// than `V`, `F`, `E`, `C`, is `CapacityExceeded` with the size needed (two or
+    /// more of `V`, `F`, `E`, `C` short: `CapacitiesExceeded`, naming each); more
     /// than [`MAX_FAST_FACES`] vertices or faces is `TooManyFaces`. On an error
     /// the scene is as it was.
     pub fn add(&mut self, mesh: BakedMesh<'m>, pose: Pose) -> Result<usize, Error> {
         let inner = mesh.mesh();
         let u = self.union;
-        need(Capacity::Instances, self.instances.len() + 1, N)?;
+        let instances = self.instances.len() + 1;
+        need(Capacity::Instances, instances, N)?;
         let (vertices, faces) = (
             u.vertices + inner.vertices().len(),
             u.faces + inner.face_count(),
@@ -186,11 +191,13 @@ impl<
                 max: MAX_FAST_FACES,
             });
         }
-        need(Capacity::Vertices, vertices, V)?;
-        need(Capacity::Faces, faces, F)?;
-        need(Capacity::Edges, u.edges + mesh.edges().len(), E)?;
+        let mut short = Shortfalls::new();
+        short.check(Capacity::Vertices, vertices, V);
+        short.check(Capacity::Faces, faces, F);
+        short.check(Capacity::Edges, u.edges + mesh.edges().len(), E);
         let corners = u.corners + inner.indices().len();
-        need(Capacity::SceneCorners, corners + faces + 1, C)?;
+        short.check(Capacity::SceneCorners, corners + faces + 1, C);
+        short.into_result()?;
         let number = self.instances.len();
         let (slot, instance) = (self.starts.get_mut(number), Instance { mesh, pose });
         if let (Some(slot), Ok(())) = (slot, self.instances.push(instance)) {
@@ -204,6 +211,36 @@ impl<
             return Err(e);
         }
         Ok(number)
+    }
+
+    /// The camera that frames every instance at its pose in a `width` x `height`
+    /// frame: [`Camera::fit`]'s rule (its direction, field of view and fill) for
+    /// the vertices the instances' faces use, each posed ([`Pose::apply`]). No
+    /// instance is `EmptyMesh`; a pose that puts a vertex out of `f32`'s range is
+    /// `NonFinite`.
+    pub fn fit_camera(&self, width: u32, height: u32) -> Result<Camera, Error> {
+        self.fit_camera_along(width, height, FIT_VIEW_DIRECTION, FIT_FOV_DEG)
+    }
+
+    /// [`fit_camera`](Self::fit_camera) seen along `direction_to_eye` with a
+    /// vertical field of view of `fov_y_deg` degrees, as
+    /// [`Camera::fit_along`] takes them.
+    pub fn fit_camera_along(
+        &self,
+        width: u32,
+        height: u32,
+        direction_to_eye: [f32; 3],
+        fov_y_deg: f32,
+    ) -> Result<Camera, Error> {
+        let posed = self.instances.iter().flat_map(|instance| {
+            let mesh = instance.mesh.mesh();
+            let pose = instance.pose;
+            mesh.indices().iter().filter_map(move |&i| {
+                let p = mesh.vertices().get(i as usize)?;
+                Some(pose.apply(*p))
+            })
+        });
+        Camera::fit_points_along(posed, width, height, direction_to_eye, fov_y_deg)
     }
 
     /// Instance `instance`'s pose, to change between frames (`None` when there is

@@ -9,15 +9,22 @@ use embedded_graphics::pixelcolor::BinaryColor;
 use embedded_graphics::prelude::DrawTarget;
 use pbuffer::prelude::*;
 
-/// The bracket as `build.rs` baked it: `BRACKET_V`, `BRACKET_F`, `BRACKET_E`, the
-/// statics and `bracket_baked()`.
+/// The bracket as `build.rs` baked it: `BRACKET_V`, `BRACKET_F`, `BRACKET_E`,
+/// `BRACKET_FACETS`, `BRACKET_LINES`, the statics and `bracket_baked()`.
 pub mod bracket {
     include!(concat!(env!("OUT_DIR"), "/bracket.rs"));
 }
 
-/// The short API for the baked bracket: every mesh buffer sized by the bake.
-pub type Bracket =
-    BakedDrawing<'static, { bracket::BRACKET_V }, { bracket::BRACKET_F }, { bracket::BRACKET_E }>;
+/// The short API for the baked bracket: every buffer sized by the bake, `FACETS`
+/// and `LINES` for the bake's views (64 x 64, around the model).
+pub type Bracket = BakedDrawing<
+    'static,
+    { bracket::BRACKET_V },
+    { bracket::BRACKET_F },
+    { bracket::BRACKET_E },
+    { bracket::BRACKET_FACETS },
+    { bracket::BRACKET_LINES },
+>;
 
 /// Draws the bracket into `target` (up to `W` x `H`), its camera fitted to the mesh
 /// and the target's size.

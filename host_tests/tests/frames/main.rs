@@ -22,5 +22,6 @@ mod open_mesh;
 mod pick;
 mod pipeline_vs_reference;
 mod random_views;
+mod scene_fit;
 mod scene_union;
 mod short_api;

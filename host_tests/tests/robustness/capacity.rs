@@ -1,7 +1,8 @@
 //! A buffer too small for a frame says which buffer and how much the frame really
 //! needs (issue 40 item 1): `Drawing::draw` used to report one more than the
 //! capacity of whichever active table filled first, so that a user with a RAM
-//! budget had to bisect `FACETS` and `LINES` by hand.
+//! budget had to bisect `FACETS` and `LINES` by hand. Both short are named in
+//! one error (issue 50; `sizing.rs`).
 
 use pbuffer::prelude::*;
 use pbuffer::render::{FastRenderer, MonoPalette};
@@ -45,6 +46,15 @@ fn draw<const FACETS: usize, const LINES: usize>() -> Result<Stats, Error> {
 const FACETS_NEEDED: usize = 129;
 const LINES_NEEDED: usize = 106;
 
+fn short(what: Capacity, needed: usize, capacity: usize) -> pbuffer::Shortfall {
+    pbuffer::Shortfall {
+        what,
+        needed,
+        capacity,
+        at_least: false,
+    }
+}
+
 fn exceeded(what: Capacity, needed: usize, capacity: usize) -> Result<(), Error> {
     Err(Error::CapacityExceeded {
         what,
@@ -60,10 +70,18 @@ fn drawing_needed_is_the_real_need_on_cow() {
         (ample.peak_faces as usize, ample.peak_edges as usize),
         (FACETS_NEEDED, LINES_NEEDED)
     );
-    // The defaults: the facets run out first, and the error says by how much.
+    // The defaults: both tables are short, and one error says by how much each
+    // (issue 50: it used to name only the facets, which ran out first).
     assert_eq!(
-        draw::<32, 32>().map(drop),
-        exceeded(Capacity::ActiveFacets, FACETS_NEEDED, 32)
+        draw::<32, 32>()
+            .unwrap_err()
+            .shortfalls()
+            .iter()
+            .collect::<Vec<_>>(),
+        [
+            short(Capacity::ActiveFacets, FACETS_NEEDED, 32),
+            short(Capacity::ActiveLines, LINES_NEEDED, 32),
+        ]
     );
     // Facets to spare: the lines, with their own peak.
     assert_eq!(
@@ -84,10 +102,18 @@ fn drawing_needed_is_the_real_need_on_cow() {
 
 #[test]
 fn capacity_errors_say_the_buffer_in_words() {
-    let e = draw::<32, 32>().unwrap_err();
+    let e = draw::<32, 1024>().unwrap_err();
     assert_eq!(
         e.to_string(),
         format!("active facets (FACETS): {FACETS_NEEDED} needed, capacity 32")
+    );
+    let e = draw::<32, 32>().unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        format!(
+            "capacities too small: active facets (FACETS): {FACETS_NEEDED} needed, \
+             capacity 32; active lines (LINES): {LINES_NEEDED} needed, capacity 32"
+        )
     );
 }
 
@@ -119,13 +145,15 @@ fn measure_tells_every_size_of_a_drawing_at_once() {
     assert_eq!(both.facets, one.facets.max(FACETS_NEEDED));
     assert_eq!(both.lines, one.lines.max(LINES_NEEDED));
     // The drawing still draws after measuring: its tables of one are too small,
-    // and the first to run out (the lines, on a row of no two facets) says so
-    // with the need measured.
+    // and the error names both with the needs measured.
     let mut fb = Frame::new();
     let drawn = cow.draw(&camera(), &mut rows, &mut fb);
     assert_eq!(
-        drawn.map(drop),
-        exceeded(Capacity::ActiveLines, LINES_NEEDED, 1)
+        drawn.unwrap_err().shortfalls().iter().collect::<Vec<_>>(),
+        [
+            short(Capacity::ActiveFacets, FACETS_NEEDED, 1),
+            short(Capacity::ActiveLines, LINES_NEEDED, 1),
+        ]
     );
 }
 

@@ -11,6 +11,7 @@ mod fuzz_codes;
 mod fuzz_properties;
 mod fuzzgen;
 mod render_robustness;
+mod sizing;
 mod stab;
 mod stability;
 mod stability_depth;

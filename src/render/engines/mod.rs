@@ -67,6 +67,7 @@ mod warnock;
 mod zbuffer;
 
 pub use codefill::{CodeFillRenderer, CodeWorkspace, DepthOrder, RowCodes, Visibility};
+pub use fast::fast_renderer_bytes;
 #[doc(hidden)]
 pub use fast::span_kernel_twin_mismatches;
 pub(crate) use fast::{faces_view, FaceViews, InstanceViews, OneMesh};

@@ -6,6 +6,7 @@
 use heapless::Vec;
 
 use super::facets::{CornerSource, Facet};
+use crate::bits::{padded, vec_bytes};
 use crate::Capacity;
 use crate::Error;
 
@@ -16,6 +17,14 @@ pub(super) struct ActiveFacets<const N: usize> {
     slots: Vec<Facet, N>,
     order: Vec<u32, N>,
     free: Vec<u16, N>,
+}
+
+impl ActiveFacets<0> {
+    /// Bytes of an `ActiveFacets<n>`.
+    pub(super) const fn bytes(n: usize) -> usize {
+        let fields = vec_bytes::<Facet>(n) + vec_bytes::<u32>(n) + vec_bytes::<u16>(n);
+        padded(fields, align_of::<Self>())
+    }
 }
 
 impl<const N: usize> ActiveFacets<N> {

@@ -69,7 +69,7 @@ mod view;
 mod views;
 
 use core::marker::PhantomData;
-use core::mem::size_of;
+use core::mem::{align_of, size_of};
 
 use fixed::types::extra::LeEqU32;
 use heapless::Vec;
@@ -179,6 +179,16 @@ pub struct FastRenderer<Frac: LeEqU32, const FACETS: usize, const LINES: usize> 
 }
 
 default_is_new!(FastRenderer<FACETS, LINES>);
+
+/// Bytes of a [`FastRenderer`] with room for `facets` facets and `lines` lines
+/// (`size_of` of `FastRenderer<_, facets, lines>`, for sizes known at run time).
+pub const fn fast_renderer_bytes(facets: usize, lines: usize) -> usize {
+    let fields = ActiveFacets::bytes(facets) + crate::bits::vec_bytes::<ActiveLine>(lines);
+    crate::bits::padded(
+        fields,
+        align_of::<FastRenderer<fixed::types::extra::U4, 0, 0>>(),
+    )
+}
 
 /// The frame's mesh on screen: the baked mesh, the frame's camera and screen, and
 /// the vertex cache made with them.

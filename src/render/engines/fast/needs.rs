@@ -13,7 +13,7 @@
 use fixed::types::extra::LeEqU32;
 
 use super::*;
-use crate::Capacity;
+use crate::{Capacity, Shortfalls};
 
 /// What one frame of the fast engine needs of the tables that fill as it runs.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
@@ -77,9 +77,11 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
 
     /// `error` from [`render`](Self::render), with the frame's true need when it is
     /// one of the tables [`needs`](Self::needs) counts (active facets, active lines,
-    /// clipped corners): the short API's errors. Kept out of `render`, whose row loop
-    /// reports only that a table is full: counting there cost the Cortex-M4 frame
-    /// 2.5 % (its inputs stayed alive across the loop).
+    /// clipped corners), and every other of those tables the frame overflows too
+    /// (then `CapacitiesExceeded`, naming each): the short API's errors. Kept out
+    /// of `render`, whose row loop reports only that a table is full: counting
+    /// there cost the Cortex-M4 frame 2.5 % (its inputs stayed alive across the
+    /// loop).
     #[cold]
     #[inline(never)]
     pub fn with_true_need<T>(
@@ -116,19 +118,34 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         else {
             return error;
         };
-        let pick: fn(FrameNeeds) -> usize = match what {
-            Capacity::ActiveFacets => |n| n.facets,
-            Capacity::ActiveLines => |n| n.lines,
-            Capacity::ClippedCorners => |n| n.clipped_corners,
-            _ => return error,
+        let tables = [
+            (Capacity::ActiveFacets, FACETS),
+            (Capacity::ActiveLines, LINES),
+            (Capacity::ClippedCorners, ws.pool.len()),
+        ];
+        if !tables.iter().any(|&(table, _)| table == what) {
+            return error;
+        }
+        let Ok(frame) = self.needs_in(views, baked, camera, settings, ws, viewport) else {
+            return error;
         };
-        match self.needs_in(views, baked, camera, settings, ws, viewport) {
-            Ok(frame) => Error::CapacityExceeded {
-                what,
-                needed: pick(frame).max(needed),
-                capacity,
-            },
-            Err(_) => error,
+        // Every table the frame overflows, each with its peak; the one that
+        // stopped the frame at least as large as it was found.
+        let mut short = Shortfalls::new();
+        for ((table, room), peak) in
+            tables
+                .into_iter()
+                .zip([frame.facets, frame.lines, frame.clipped_corners])
+        {
+            if table == what {
+                short.check(table, peak.max(needed), capacity);
+            } else {
+                short.check(table, peak, room);
+            }
+        }
+        match short.into_result() {
+            Err(all) => all.widen(),
+            Ok(()) => error,
         }
     }
 

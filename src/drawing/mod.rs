@@ -5,8 +5,10 @@
 //! with the mesh; [`FrameRows`] keeps those that grow with the display. Both are
 //! sized by const generics, zero-initialised by a `const fn new`, and can live in
 //! `static`s. Too small a size is [`Error::CapacityExceeded`] naming the parameter
-//! ([`Capacity`]) and the size needed, never a truncated picture;
-//! [`Drawing::measure`] tells every size a mesh and its views need at once.
+//! ([`Capacity`]) and the size needed, never a truncated picture; several too
+//! small at once are one [`Error::CapacitiesExceeded`] naming each;
+//! [`Drawing::measure`] tells every size a mesh and its views need at once, and
+//! [`ram`](crate::ram) what they cost.
 //!
 //! What the short form costs against the long one ([`FastRenderer`] with a
 //! [`FastWorkspace`] sized by hand and the constants baked on the host):
@@ -21,18 +23,19 @@
 //!
 //! [`BakedSource`]: crate::render::BakedSource
 
+pub(crate) mod ram;
+
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::pixelcolor::BinaryColor;
 
-use crate::error::need;
 use crate::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
 use crate::render::{
     BakedMesh, CompactEdge, FacePlane, FaceViews, FastRenderer, FastVertex, FastWorkspace,
     FrameNeeds, FrameProbe, MonoPalette, OneMesh, Settings, Stats,
 };
 use crate::subpixel::U4;
-use crate::Capacity;
 use crate::{Camera, Error, FillSolid, SpanSink, Viewport};
+use crate::{Capacity, Shortfalls};
 
 /// `Default` is `new()` for a drawing of any sizes.
 macro_rules! default_is_new {
@@ -103,7 +106,7 @@ pub struct Drawing<
 
 /// What [`Drawing::bake`] learnt.
 #[derive(Debug, Clone, Copy)]
-struct Baked<'m> {
+pub(crate) struct Baked<'m> {
     mesh: Mesh<'m>,
     edges: usize,
 }
@@ -140,13 +143,20 @@ impl<
     /// Bakes `mesh` (its edges found with creases past [`CREASE_DEG`], then
     /// [`BakedMesh::bake`]) and keeps it for [`draw`](Self::draw). Too few vertices,
     /// faces or edges is `CapacityExceeded` naming the parameter's size needed
-    /// (for `E`, the larger of the unique edges and half the corners); on any error
-    /// nothing stays baked.
+    /// (for `E`, the larger of the unique edges and half the corners), or
+    /// `CapacitiesExceeded` naming every one of `V`, `F` and `E` that is short,
+    /// all in one error. The unique edges are counted once `V` and half the
+    /// corners fit; until then `E` is listed as needing at least half the corners
+    /// ([`Shortfall::at_least`](crate::Shortfall::at_least)). On any error nothing
+    /// stays baked.
     pub fn bake(&mut self, mesh: Mesh<'m>) -> Result<(), Error> {
         self.baked = None;
-        need(Capacity::Vertices, mesh.vertices().len(), V)?;
-        need(Capacity::Faces, mesh.face_count(), F)?;
-        need(Capacity::Edges, mesh.indices().len().div_ceil(2), E)?;
+        let mut short = Shortfalls::new();
+        short.check(Capacity::Vertices, mesh.vertices().len(), V);
+        short.check(Capacity::Faces, mesh.face_count(), F);
+        let half_corners = mesh.indices().len().div_ceil(2);
+        short.check_at_least(Capacity::Edges, half_corners, E, true);
+        short.into_result()?;
         let adjacency = EdgeAdjacency::build(
             &mesh,
             CREASE_DEG,
@@ -174,7 +184,8 @@ impl<
     /// ([`DrawTarget::fill_solid`]). Nothing baked is `Err(NothingBaked)`. More
     /// facets or lines active on a row than `FACETS` or `LINES`, or more clipped
     /// corners than [`CLIPPED_CORNERS`], is `CapacityExceeded` with the frame's
-    /// true need (its peak, counted on past the limit), and no frame.
+    /// true need (its peak, counted on past the limit), and no frame; two or
+    /// three of them short is `CapacitiesExceeded`, naming each with its need.
     pub fn draw<D: DrawTarget<Color = BinaryColor>, const W: usize, const H: usize>(
         &mut self,
         camera: &Camera,
@@ -297,13 +308,16 @@ impl<
     }
 
     /// Keeps `mesh` for [`draw`](Self::draw). More vertices, faces or edges than
-    /// `V`, `F` or `E` is `CapacityExceeded` naming the size needed, and then no mesh
-    /// is kept.
+    /// `V`, `F` or `E` is `CapacityExceeded` naming the size needed (two or three
+    /// of them short: `CapacitiesExceeded`, naming each), and then no mesh is
+    /// kept.
     pub fn set_mesh(&mut self, mesh: BakedMesh<'m>) -> Result<(), Error> {
         self.mesh = None;
-        need(Capacity::Vertices, mesh.mesh().vertices().len(), V)?;
-        need(Capacity::Faces, mesh.mesh().face_count(), F)?;
-        need(Capacity::Edges, mesh.edges().len(), E)?;
+        let mut short = Shortfalls::new();
+        short.check(Capacity::Vertices, mesh.mesh().vertices().len(), V);
+        short.check(Capacity::Faces, mesh.mesh().face_count(), F);
+        short.check(Capacity::Edges, mesh.edges().len(), E);
+        short.into_result()?;
         self.mesh = Some(mesh);
         Ok(())
     }
@@ -563,47 +577,22 @@ impl<const W: usize, const H: usize> FrameRows<W, H> {
         }
     }
 
-    /// Is a frame of `viewport` in reach? `CapacityExceeded` names the first of
-    /// `W`, `H` and the line masks' `H` (two words per 32 columns) that is short.
+    /// Is a frame of `viewport` in reach? `CapacityExceeded` (or
+    /// `CapacitiesExceeded`) names each of `W`, `H` and the line masks' `H` (two
+    /// words per 32 columns) that is short.
     fn fit(&self, viewport: Viewport) -> Result<(), Error> {
-        let width = usize::from(viewport.width);
-        need(Capacity::RowWidth, width, W)?;
-        need(Capacity::Rows, usize::from(viewport.height), H)?;
-        need(Capacity::LineMasks, 2 * width.div_ceil(32), H)
+        let (width, height) = (usize::from(viewport.width), usize::from(viewport.height));
+        let masks = 2 * width.div_ceil(32);
+        if width <= W && height <= H && masks <= H {
+            return Ok(());
+        }
+        let mut short = Shortfalls::new();
+        short.check(Capacity::RowWidth, width, W);
+        short.check(Capacity::Rows, height, H);
+        short.check(Capacity::LineMasks, masks, H);
+        short.into_result()
     }
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// A square: 4 vertices, 1 face, 4 edges (half its 4 corners: 2).
-    fn square() -> Mesh<'static> {
-        const V: [[f32; 3]; 4] = [
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [1.0, 1.0, 0.0],
-            [0.0, 1.0, 0.0],
-        ];
-        Mesh::new(&V, &[0, 1, 2, 3], &[0, 4]).unwrap()
-    }
-
-    fn short(what: Capacity, needed: usize, capacity: usize) -> Result<(), Error> {
-        Err(Error::CapacityExceeded {
-            what,
-            needed,
-            capacity,
-        })
-    }
-
-    #[test]
-    fn bake_names_the_parameter_that_is_short() {
-        let v = Drawing::<3, 1, 4>::new().bake(square());
-        assert_eq!(v, short(Capacity::Vertices, 4, 3));
-        let f = Drawing::<4, 0, 4>::new().bake(square());
-        assert_eq!(f, short(Capacity::Faces, 1, 0));
-        let e = Drawing::<4, 1, 3>::new().bake(square());
-        assert_eq!(e, short(Capacity::Edges, 4, 3));
-        assert_eq!(Drawing::<4, 1, 4>::new().bake(square()), Ok(()));
-    }
-}
+mod tests;
