@@ -19,7 +19,8 @@ use stm32f4xx_hal::prelude::*;
 use stm32f4xx_hal::rcc::Config;
 
 /// Suzanne's statics and fast-engine constants, baked by build.rs (`SUZANNE_...`,
-/// `suzanne_baked()`).
+/// `suzanne_baked()`; the bake's sizes and edge list are not used here).
+#[allow(dead_code)]
 mod suzanne {
     include!(concat!(env!("OUT_DIR"), "/suzanne.rs"));
 }

@@ -27,7 +27,8 @@ pub static BOOT2: [u8; 256] = rp2040_boot2::BOOT_LOADER_W25Q080;
 const XTAL_FREQ_HZ: u32 = 12_000_000;
 
 /// The panel bracket's statics and fast-engine constants, baked by build.rs
-/// (`PANEL_...`, `panel_baked()`).
+/// (`PANEL_...`, `panel_baked()`; the bake's sizes and edge list are not used here).
+#[allow(dead_code)]
 mod part {
     include!(concat!(env!("OUT_DIR"), "/panel.rs"));
 }
