@@ -7,8 +7,12 @@
 //! and the DSP extension (Cortex-M4, M7) the kernels are assembly (`kernel.s`,
 //! one function a layout), because compiled Rust keeps more values live than
 //! Thumb-2 has registers and spills them a facet-row (`../shared/KERNEL-STUDY.md`).
+//! The crate's `build.rs` picks them by the target's name (`thumbv7em-*`), so that
+//! stable toolchains, which report no Arm target feature to `cfg`, take them too
+//! (`cfg(pbuffer_dsp_kernels)`; `PBUFFER_NO_KERNELS=1` builds the twin instead).
 //! [`twin_mismatches`] runs both on random records and rows; `scripts/firmware`
-//! runs it under QEMU, and the firmware's frame hashes equal the host's.
+//! runs it under QEMU, checks by symbol that the M4 examples link the kernels, and
+//! the firmware's frame hashes equal the host's.
 
 use super::super::depth_row::cells;
 use super::{Facet, Layout};
@@ -19,11 +23,11 @@ impl Facet {
     /// layout picks a kernel with no field selected at run time.
     #[inline(always)]
     pub fn fill_span_row(&mut self, row: &mut [u32]) -> u32 {
-        #[cfg(all(target_arch = "arm", target_feature = "thumb2", target_feature = "dsp"))]
+        #[cfg(pbuffer_dsp_kernels)]
         {
             thumb::fill_span_row(self, row)
         }
-        #[cfg(not(all(target_arch = "arm", target_feature = "thumb2", target_feature = "dsp")))]
+        #[cfg(not(pbuffer_dsp_kernels))]
         {
             self.fill_span_row_portable(row)
         }
@@ -101,7 +105,7 @@ impl Facet {
 }
 
 /// The assembly kernels (Thumb-2 with DSP) and their one entry point.
-#[cfg(all(target_arch = "arm", target_feature = "thumb2", target_feature = "dsp"))]
+#[cfg(pbuffer_dsp_kernels)]
 #[allow(unsafe_code)]
 mod thumb {
     use core::mem::offset_of;
