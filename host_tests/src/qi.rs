@@ -98,6 +98,10 @@ pub struct QiMesh {
     sides: Vec<TriangleEdge>,
     /// Where each triangle edge is in `sides`.
     side_index: HashMap<(u32, u32), usize>,
+    /// The faces on each welded side (the faces of a mesh edge).
+    users: HashMap<(u32, u32), Vec<u32>>,
+    /// Welded corners of each face.
+    corners: Vec<Vec<u32>>,
     /// Triangles around each welded vertex (CSR).
     around_start: Vec<u32>,
     around: Vec<u32>,
@@ -118,8 +122,10 @@ impl QiMesh {
             .collect();
         let mut tris = Vec::new();
         let mut users: HashMap<(u32, u32), Vec<u32>> = HashMap::new();
+        let mut corners = Vec::new();
         for f in 0..mesh.face_count() {
             let c: Vec<u32> = mesh.face(f).iter().map(|&i| weld[i as usize]).collect();
+            corners.push(c.clone());
             for i in 1..c.len().saturating_sub(1) {
                 tris.push((f as u32, [c[0], c[i], c[i + 1]]));
             }
@@ -184,6 +190,8 @@ impl QiMesh {
             edges,
             sides,
             side_index,
+            users,
+            corners,
             around_start: count,
             around,
         }
@@ -204,13 +212,20 @@ struct P {
     x: i64,
     y: i64,
     d: i64,
+    /// The welded vertex it is ([`NOT_A_VERTEX`] for other points): its rank in
+    /// the symbolic perturbation.
+    id: u32,
 }
 
-fn pt(v: &FastVertex) -> P {
+/// The id of a point that is no vertex.
+const NOT_A_VERTEX: u32 = u32::MAX;
+
+fn pt(v: &FastVertex, id: u32) -> P {
     P {
         x: i64::from(v.x),
         y: i64::from(v.y),
         d: i64::from(v.d >> 8),
+        id,
     }
 }
 
@@ -218,12 +233,19 @@ fn orient(p: P, q: P, r: P) -> i64 {
     (q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x)
 }
 
-/// The side of `r` of the line `p`-`q` (+1 left in these axes, -1 right), `r`
-/// moved by `(+e, +e^2)` where it lies on the line; 0 only when `p == q`.
+/// The side of `r` of the line `p`-`q` (+1 left in these axes, -1 right). Where
+/// the three lie on one line and all are vertices, every vertex is moved by its
+/// own infinitesimal (simulation of simplicity: vertex `i`'s x by `e^(2^(2i))`, its
+/// y by `e^(2^(2i+1))`, lower ids moved more), so that coincident vertices are
+/// told apart the same way in every test; a point that is no vertex is moved by
+/// `(+e, +e^2)` (the conventions' nudge). 0 only when `p == q` and no rule applies.
 fn side(p: P, q: P, r: P) -> i64 {
     let o = orient(p, q, r);
     if o != 0 {
         return o.signum();
+    }
+    if p.id != NOT_A_VERTEX && q.id != NOT_A_VERTEX && r.id != NOT_A_VERTEX {
+        return perturbed(p, q, r);
     }
     // orient(p, q, r + (e, e^2)) = (qx - px) e^2 - (qy - py) e.
     if q.y != p.y {
@@ -231,6 +253,28 @@ fn side(p: P, q: P, r: P) -> i64 {
     } else {
         (q.x - p.x).signum()
     }
+}
+
+/// The sign of a zero orientation of three vertices under the perturbation of
+/// [`side`]: with `i < j < k` their ids in order, the first non-zero of
+/// `y_j - y_k`, `x_k - x_j`, `y_k - y_i` (the factors of the three largest
+/// infinitesimals), else -1 (the factor of `e_i2 e_j1`), times the parity of the
+/// order.
+fn perturbed(p: P, q: P, r: P) -> i64 {
+    let mut v = [p, q, r];
+    let mut parity = 1;
+    for a in 0..2 {
+        for b in 0..2 - a {
+            if v[b].id > v[b + 1].id {
+                v.swap(b, b + 1);
+                parity = -parity;
+            }
+        }
+    }
+    let [i, j, k] = v;
+    let terms = [j.y - k.y, k.x - j.x, k.y - i.y];
+    let s = terms.iter().find(|t| **t != 0).map_or(-1, |t| t.signum());
+    s * parity
 }
 
 /// Whether `r` (moved) lies inside triangle `t`, and the sign of the plane's
@@ -292,7 +336,7 @@ struct Contour {
 
 impl QiFrame<'_> {
     fn p(&self, v: u32) -> P {
-        pt(&self.cache[v as usize])
+        pt(&self.cache[v as usize], v)
     }
 
     fn drawn(&self, f: u32) -> bool {
@@ -306,6 +350,50 @@ impl QiFrame<'_> {
     fn tri(&self, t: u32) -> (u32, [P; 3]) {
         let (f, c) = self.mesh.tris[t as usize];
         (f, c.map(|v| self.p(v)))
+    }
+
+    /// The faces that do not hide drawn edge `a-b` with faces `own`: its own,
+    /// and, where it is an outline (a boundary or a silhouette), the faces beyond
+    /// an own face collapsed on screen: across a side of it within one snapping
+    /// step of the edge (the conventions' "Where snapping moves a face's side
+    /// across an outline").
+    fn not_hiding(&self, a: u32, b: u32, own: &[u32]) -> Vec<u32> {
+        let mut out = own.to_vec();
+        let outline = match own {
+            [_] => true,
+            [f, g] => self.facing(*f) != self.facing(*g),
+            _ => false,
+        };
+        if !outline {
+            return out;
+        }
+        let (pa, pb) = (self.p(a), self.p(b));
+        let len2 = (pb.x - pa.x).pow(2) + (pb.y - pa.y).pow(2);
+        let near = |v: u32| {
+            let o = orient(pa, pb, self.p(v));
+            o * o <= len2
+        };
+        for &f in own {
+            let c = &self.mesh.corners[f as usize];
+            for i in 0..c.len() {
+                let (p, q) = (c[i], c[(i + 1) % c.len()]);
+                if (p.min(q), p.max(q)) == (a.min(b), a.max(b)) || !near(p) || !near(q) {
+                    continue;
+                }
+                for &g in self
+                    .mesh
+                    .users
+                    .get(&(p.min(q), p.max(q)))
+                    .into_iter()
+                    .flatten()
+                {
+                    if !out.contains(&g) {
+                        out.push(g);
+                    }
+                }
+            }
+        }
+        out
     }
 
     /// The triangles around `v` (of faces not in `own`) covering `e = v-b` next
@@ -380,12 +468,14 @@ impl QiFrame<'_> {
             x: p.x * den,
             y: p.y * den,
             d: p.d * den,
+            id: p.id,
         };
         let (pa, pb) = (self.p(a), self.p(b));
         let r = P {
             x: pa.x * (den - num) + pb.x * num,
             y: pa.y * (den - num) + pb.y * num,
             d: pa.d * (den - num) + pb.d * num,
+            id: NOT_A_VERTEX,
         };
         let mut count = 0;
         for t in 0..self.mesh.tris.len() as u32 {
@@ -460,6 +550,7 @@ impl QiFrame<'_> {
         let mut events: Vec<Vec<(f64, i64)>> = Vec::with_capacity(drawn.len());
         for &k in &drawn {
             let (a, b, _, own) = &m.edges[k];
+            let own = &self.not_hiding(*a, *b, own);
             let (pa, pb) = (self.p(*a), self.p(*b));
             let lo = (pa.x.min(pb.x), pa.y.min(pb.y));
             let hi = (pa.x.max(pb.x), pa.y.max(pb.y));
@@ -622,6 +713,7 @@ impl QiFrame<'_> {
                 let qv = star[&v];
                 for &i in &at[&v] {
                     let (a, b, _, own) = &m.edges[drawn[i]];
+                    let own = &self.not_hiding(*a, *b, own);
                     let forward = *a == v;
                     if forward && start_qi[i].is_some() {
                         continue;
@@ -667,6 +759,7 @@ impl QiFrame<'_> {
         if check {
             for (i, &k) in drawn.iter().enumerate() {
                 let (a, b, _, own) = &m.edges[k];
+                let own = &self.not_hiding(*a, *b, own);
                 let q0 = start_qi[i].unwrap_or(0);
                 let mid = q0
                     + events[i]
@@ -759,6 +852,7 @@ mod tests {
             x: rng.range(-6400.0, 6400.0) as i64,
             y: rng.range(-3840.0, 3840.0) as i64,
             d: rng.range(0.0, 16_777_215.0) as i64,
+            id: NOT_A_VERTEX,
         }
     }
 
@@ -823,7 +917,12 @@ mod tests {
     /// going right (y grows downward), right of a vertical line going down.
     #[test]
     fn a_point_on_a_line_takes_the_side_of_its_nudge() {
-        let p = |x, y| P { x, y, d: 0 };
+        let p = |x, y| P {
+            x,
+            y,
+            d: 0,
+            id: NOT_A_VERTEX,
+        };
         // Horizontal, going +x: the nudge is +y, to the left in these axes.
         assert_eq!(side(p(0, 0), p(10, 0), p(5, 0)), 1);
         assert_eq!(side(p(10, 0), p(0, 0), p(5, 0)), -1);
@@ -831,5 +930,60 @@ mod tests {
         assert_eq!(side(p(0, 0), p(0, 10), p(0, 5)), -1);
         assert_eq!(side(p(0, 0), p(0, 10), p(1, 5)), -1);
         assert_eq!(side(p(0, 0), p(10, 0), p(5, 1)), 1);
+    }
+}
+
+#[cfg(test)]
+mod perturbation_tests {
+    use super::*;
+
+    fn v(x: i64, y: i64, id: u32) -> P {
+        P { x, y, d: 0, id }
+    }
+
+    /// The perturbed orientation is antisymmetric and never zero, for three
+    /// vertices on one line and for coincident ones, and agrees with the
+    /// exact one where that is not zero.
+    #[test]
+    fn the_perturbed_side_is_a_consistent_orientation() {
+        let cases = [
+            [v(0, 0, 3), v(10, 0, 1), v(5, 0, 2)],
+            [v(0, 0, 3), v(0, 0, 1), v(5, 5, 2)],
+            [v(2, 2, 0), v(2, 2, 1), v(2, 2, 2)],
+            [v(0, 0, 0), v(4, 4, 5), v(8, 8, 9)],
+            [v(1, 0, 0), v(4, 4, 5), v(8, 8, 9)],
+        ];
+        for [a, b, c] in cases {
+            let s = side(a, b, c);
+            assert_ne!(s, 0);
+            assert_eq!(side(b, a, c), -s, "swap");
+            assert_eq!(side(b, c, a), s, "rotation");
+            assert_eq!(side(a, c, b), -s, "swap");
+            let o = orient(a, b, c);
+            if o != 0 {
+                assert_eq!(s, o.signum());
+            }
+        }
+    }
+
+    /// Four vertices where two coincide: the segment through the coincident
+    /// pair's partners is crossed by exactly one of the two segments that meet
+    /// there, as if the two were apart.
+    #[test]
+    fn coincident_vertices_are_crossed_once_along_a_chain() {
+        // Chain a-m-b passes through m; the contour p-q passes through m's
+        // position at vertex n (another vertex at the same point).
+        let (a, m, b) = (v(0, -10, 0), v(0, 0, 1), v(0, 10, 2));
+        let (p, n, q) = (v(-10, 0, 3), v(0, 0, 4), v(10, 0, 5));
+        let crosses = |e0: P, e1: P, c0: P, c1: P| {
+            side(c0, c1, e0) != side(c0, c1, e1) && side(e0, e1, c0) != side(e0, e1, c1)
+        };
+        // The chain a-m-b against the contour chain p-n-q: one crossing in all.
+        let total: usize = [(a, m), (m, b)]
+            .iter()
+            .flat_map(|e| [(p, n), (n, q)].map(|c| (*e, c)))
+            .filter(|((e0, e1), (c0, c1))| crosses(*e0, *e1, *c0, *c1))
+            .count();
+        assert_eq!(total, 1);
     }
 }
