@@ -62,21 +62,48 @@ pub struct QiCounts {
 }
 
 impl QiCounts {
+    /// Takes `o` out of `self`.
+    pub fn sub(&mut self, o: &QiCounts) {
+        let mut neg = *o;
+        for f in [
+            &mut neg.drawn,
+            &mut neg.contours,
+            &mut neg.box_pairs,
+            &mut neg.crossings,
+            &mut neg.nearer,
+            &mut neg.seeds,
+            &mut neg.reseeds,
+            &mut neg.negative,
+            &mut neg.fallback,
+            &mut neg.point_faces,
+            &mut neg.piercings,
+            &mut neg.checked,
+            &mut neg.mismatched,
+        ] {
+            *f = f.wrapping_neg();
+        }
+        self.add(&neg);
+    }
+
     /// Adds `o` into `self`.
     pub fn add(&mut self, o: &QiCounts) {
-        self.drawn += o.drawn;
-        self.contours += o.contours;
-        self.box_pairs += o.box_pairs;
-        self.crossings += o.crossings;
-        self.nearer += o.nearer;
-        self.seeds += o.seeds;
-        self.reseeds += o.reseeds;
-        self.negative += o.negative;
-        self.fallback += o.fallback;
-        self.point_faces += o.point_faces;
-        self.piercings += o.piercings;
-        self.checked += o.checked;
-        self.mismatched += o.mismatched;
+        for (a, b) in [
+            (&mut self.drawn, o.drawn),
+            (&mut self.contours, o.contours),
+            (&mut self.box_pairs, o.box_pairs),
+            (&mut self.crossings, o.crossings),
+            (&mut self.nearer, o.nearer),
+            (&mut self.seeds, o.seeds),
+            (&mut self.reseeds, o.reseeds),
+            (&mut self.negative, o.negative),
+            (&mut self.fallback, o.fallback),
+            (&mut self.point_faces, o.point_faces),
+            (&mut self.piercings, o.piercings),
+            (&mut self.checked, o.checked),
+            (&mut self.mismatched, o.mismatched),
+        ] {
+            *a = a.wrapping_add(b);
+        }
     }
 }
 

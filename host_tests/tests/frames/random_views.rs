@@ -413,6 +413,7 @@ fn segment_lines_sweep() {
     let mut all = QiCounts::default();
     let mut worst: Vec<(f64, String)> = Vec::new();
     for (name, mesh, cull) in meshes() {
+        let before = (over_limits, misclassified, frames, all);
         for (k, view) in views(&mesh, count, &mut rng).iter().enumerate() {
             let only = std::env::var("PBUFFER_SWEEP_ONLY").unwrap_or_default();
             if !only.is_empty() && only != format!("{name} {k}") && only != name {
@@ -451,6 +452,25 @@ fn segment_lines_sweep() {
                 }
             }
         }
+        let n = (frames - before.2).max(1) as f64;
+        let per: Vec<String> = (0..3)
+            .map(|i| {
+                format!(
+                    "{} over, {:.4} %",
+                    over_limits[i] - before.0[i],
+                    (misclassified[i] - before.1[i]) / n
+                )
+            })
+            .collect();
+        let mut units = all;
+        units.sub(&before.3);
+        println!(
+            "{name}: per-pixel {} | segments {} | zbuffer {} | per frame: {:.0} drawn, {:.0} contours, {:.0} box pairs, {:.0} crossings, {:.0} nearer, {:.1} seeds, {:.2} re-seeds, {:.0} point-test triangles, {:.1} piercings",
+            per[0], per[1], per[2],
+            units.drawn as f64 / n, units.contours as f64 / n, units.box_pairs as f64 / n,
+            units.crossings as f64 / n, units.nearer as f64 / n, units.seeds as f64 / n,
+            units.reseeds as f64 / n, units.point_faces as f64 / n, units.piercings as f64 / n
+        );
     }
     worst.sort_by(|a, b| b.0.total_cmp(&a.0));
     for (i, n) in names.iter().enumerate() {
