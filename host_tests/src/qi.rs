@@ -454,38 +454,34 @@ impl QiFrame<'_> {
     /// are strictly nearer there: counted in `QI*(v)`, but not over a line that
     /// `own` are the faces of.
     fn own_apart(&self, v: u32, own: &[u32]) -> i64 {
-        let pv = self.p(v);
-        let mut count = 0;
-        for (t, (f, c)) in self.mesh.tris.iter().enumerate() {
-            if !own.contains(f) || !self.drawn(*f) || c.contains(&v) {
-                continue;
-            }
-            let (_, tp) = self.tri(t as u32);
-            let (inside, n) = in_triangle(tp, pv);
-            if inside && n > 0 {
-                count += 1;
-            }
-        }
-        count
+        self.covering(v, |f| own.contains(&f)).0
     }
 
     /// `QI*(v)`: the drawn triangles not around `v` that cover `v` (moved) and
     /// are strictly nearer there.
     fn point(&self, v: u32, counts: &mut QiCounts) -> i64 {
+        let (count, asked) = self.covering(v, |_| true);
+        counts.point_faces += asked;
+        count
+    }
+
+    /// The drawn triangles of faces that `keep` takes, not around `v`, that cover
+    /// `v` (moved) and are strictly nearer there; and how many were asked.
+    fn covering(&self, v: u32, keep: impl Fn(u32) -> bool) -> (i64, u64) {
         let pv = self.p(v);
-        let mut count = 0;
+        let (mut count, mut asked) = (0, 0);
         for (t, (f, c)) in self.mesh.tris.iter().enumerate() {
-            if !self.drawn(*f) || c.contains(&v) {
+            if !keep(*f) || !self.drawn(*f) || c.contains(&v) {
                 continue;
             }
-            counts.point_faces += 1;
+            asked += 1;
             let (_, tp) = self.tri(t as u32);
             let (inside, n) = in_triangle(tp, pv);
             if inside && n > 0 {
                 count += 1;
             }
         }
-        count
+        (count, asked)
     }
 
     /// The count at the point `a + (b - a) num / den` of edge `a-b` by testing

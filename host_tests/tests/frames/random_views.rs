@@ -427,6 +427,14 @@ fn segment_lines_sweep() {
                 render_frame(&mesh, &view.camera, &spec(EngineSpec::Fast, view, cull)).unwrap()
             });
             all.add(&counts);
+            // The same pixels as the per-pixel test's, only their classes decided
+            // another way.
+            let drawn = |f: &Frame| f.lines.iter().map(|&c| c != 0).collect::<Vec<_>>();
+            assert_eq!(
+                drawn(&fast),
+                drawn(&seg),
+                "{name} view {k}: the pixels drawn"
+            );
             let z =
                 render_frame(&mesh, &view.camera, &spec(EngineSpec::ZBuffer, view, cull)).unwrap();
             frames += 1;
