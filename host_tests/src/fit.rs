@@ -154,11 +154,13 @@ pub fn fit_camera(mesh: &MeshData, width: usize, height: usize) -> CameraSpec {
     }
 }
 
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+/// The dot product.
+pub fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+/// The cross product.
+pub fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [
         a[1] * b[2] - a[2] * b[1],
         a[2] * b[0] - a[0] * b[2],
@@ -166,7 +168,8 @@ fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     ]
 }
 
-fn normalize(a: [f64; 3]) -> [f64; 3] {
+/// `a` scaled to unit length.
+pub fn normalize(a: [f64; 3]) -> [f64; 3] {
     let l = dot(a, a).sqrt();
     [a[0] / l, a[1] / l, a[2] / l]
 }

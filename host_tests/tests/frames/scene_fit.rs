@@ -1,8 +1,9 @@
 //! `Camera::fit` framed one mesh; a scene of several posed parts had no fitted
-//! camera (issue 50): `SceneDrawing::fit_camera` frames every instance at its
+//! camera: `SceneDrawing::fit_camera` frames every instance at its
 //! pose, each posed vertex within `FIT_FILL` of the half-width and half-height,
 //! as an `f64` projection of the `f64`-posed vertices checks here.
 
+use host_tests::fit::{cross, dot, normalize};
 use pbuffer::prelude::*;
 use pbuffer::{FIT_FILL, FIT_FOV_DEG, FIT_VIEW_DIRECTION};
 
@@ -31,23 +32,6 @@ fn posed(pose: &Pose, p: [f32; 3]) -> [f64; 3] {
     })
 }
 
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn unit(a: [f64; 3]) -> [f64; 3] {
-    let n = dot(a, a).sqrt();
-    a.map(|c| c / n)
-}
-
 #[test]
 fn a_fitted_scene_camera_keeps_every_posed_vertex_inside_the_frame_margin() {
     let mut cube = Drawing::<8, 6, 12>::new();
@@ -65,8 +49,8 @@ fn a_fitted_scene_camera_keeps_every_posed_vertex_inside_the_frame_margin() {
     for (w, h) in [(400u32, 240u32), (128, 64), (64, 128)] {
         let camera = scene.fit_camera(w, h).unwrap();
         let eye = camera.eye().map(f64::from);
-        let f = unit(FIT_VIEW_DIRECTION.map(|c| -f64::from(c)));
-        let s = unit(cross(f, [0.0, 1.0, 0.0]));
+        let f = normalize(FIT_VIEW_DIRECTION.map(|c| -f64::from(c)));
+        let s = normalize(cross(f, [0.0, 1.0, 0.0]));
         let u = cross(s, f);
         let tan = (f64::from(FIT_FOV_DEG) / 2.0).to_radians().tan();
         let aspect = f64::from(w) / f64::from(h);
