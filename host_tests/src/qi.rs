@@ -129,6 +129,8 @@ pub struct QiMesh {
     users: HashMap<(u32, u32), Vec<u32>>,
     /// Welded corners of each face.
     corners: Vec<Vec<u32>>,
+    /// Each face's first fan triangle in `tris` (its triangles are consecutive).
+    face_tris: Vec<u32>,
     /// Triangles around each welded vertex (CSR).
     around_start: Vec<u32>,
     around: Vec<u32>,
@@ -150,9 +152,11 @@ impl QiMesh {
         let mut tris = Vec::new();
         let mut users: HashMap<(u32, u32), Vec<u32>> = HashMap::new();
         let mut corners = Vec::new();
+        let mut face_tris = Vec::new();
         for f in 0..mesh.face_count() {
             let c: Vec<u32> = mesh.face(f).iter().map(|&i| weld[i as usize]).collect();
             corners.push(c.clone());
+            face_tris.push(tris.len() as u32);
             for i in 1..c.len().saturating_sub(1) {
                 tris.push((f as u32, [c[0], c[i], c[i + 1]]));
             }
@@ -219,6 +223,7 @@ impl QiMesh {
             side_index,
             users,
             corners,
+            face_tris,
             around_start: count,
             around,
         }
@@ -568,12 +573,19 @@ impl QiFrame<'_> {
         }
         counts.drawn += drawn.len() as u64;
         counts.contours += contours.len() as u64;
+        // Each drawn edge's faces that do not hide it, decided once.
+        let owners: Vec<Vec<u32>> = drawn
+            .iter()
+            .map(|&k| {
+                let (a, b, _, own) = &m.edges[k];
+                self.not_hiding(*a, *b, own)
+            })
+            .collect();
 
         // Each drawn edge: its crossings (t, delta) sorted.
         let mut events: Vec<Vec<(f64, i64)>> = Vec::with_capacity(drawn.len());
-        for &k in &drawn {
-            let (a, b, _, own) = &m.edges[k];
-            let own = &self.not_hiding(*a, *b, own);
+        for (&k, own) in drawn.iter().zip(&owners) {
+            let (a, b, _, _) = &m.edges[k];
             let (pa, pb) = (self.p(*a), self.p(*b));
             let lo = (pa.x.min(pb.x), pa.y.min(pb.y));
             let hi = (pa.x.max(pb.x), pa.y.max(pb.y));
@@ -583,10 +595,9 @@ impl QiFrame<'_> {
             // other side (an own face counts nowhere on its line).
             let mut extra: Vec<Contour> = Vec::new();
             for &f in own.iter() {
-                for (tf, c) in &m.tris {
-                    if *tf != f {
-                        continue;
-                    }
+                let first = m.face_tris[f as usize] as usize;
+                let count = m.corners[f as usize].len().saturating_sub(2);
+                for (_, c) in &m.tris[first..first + count] {
                     for i in 0..3 {
                         let (p, q) = (c[i].min(c[(i + 1) % 3]), c[i].max(c[(i + 1) % 3]));
                         let Some(&si) = m.side_index.get(&(p, q)) else {
@@ -735,8 +746,8 @@ impl QiFrame<'_> {
             while let Some(v) = queue.pop_front() {
                 let qv = star[&v];
                 for &i in &at[&v] {
-                    let (a, b, _, own) = &m.edges[drawn[i]];
-                    let own = &self.not_hiding(*a, *b, own);
+                    let (a, b, _, _) = &m.edges[drawn[i]];
+                    let own = &owners[i];
                     let forward = *a == v;
                     if forward && start_qi[i].is_some() {
                         continue;
@@ -781,8 +792,8 @@ impl QiFrame<'_> {
 
         if check {
             for (i, &k) in drawn.iter().enumerate() {
-                let (a, b, _, own) = &m.edges[k];
-                let own = &self.not_hiding(*a, *b, own);
+                let (a, b, _, _) = &m.edges[k];
+                let own = &owners[i];
                 let q0 = start_qi[i].unwrap_or(0);
                 let mid = q0
                     + events[i]
@@ -803,15 +814,17 @@ impl QiFrame<'_> {
             let q0 = start_qi[i].unwrap_or(0);
             let ev = &events[i];
             let (pa, pb) = (self.p(*a), self.p(*b));
+            // The count after each crossing, so a pixel looks its piece up.
+            let after: Vec<i64> = ev
+                .iter()
+                .scan(q0, |q, e| {
+                    *q += e.1;
+                    Some(*q)
+                })
+                .collect();
             walk(pa, pb, self.s, self.width, self.height, |x, y, t| {
-                let mut q = q0;
-                for e in ev {
-                    if e.0 < t {
-                        q += e.1;
-                    } else {
-                        break;
-                    }
-                }
+                let passed = ev.partition_point(|e| e.0 < t);
+                let q = if passed == 0 { q0 } else { after[passed - 1] };
                 if q < 0 {
                     counts.negative += 1;
                 }

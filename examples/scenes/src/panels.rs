@@ -349,3 +349,27 @@ where
         });
     target.draw_iter(lit)
 }
+
+/// The instrument demo on an SSD1306 for ever (the board examples' main loop): the
+/// display initialised, then each frame drawn into `fb`, its lit pixels copied into
+/// the driver's cleared buffer and flushed; one turn is
+/// [`FRAMES`](crate::instrument::FRAMES) frames. A fault of the display or the
+/// engine stops it with a panic, which a board reports as it can.
+pub fn run_instrument_ssd1306<I2C: embedded_hal::i2c::I2c>(
+    display: &mut Ssd1306Display<I2C>,
+    engine: &mut crate::scenes::PanelFastEngine,
+    baked: &BakedMesh<'_>,
+    buffers: &mut crate::scenes::PanelFastBuffers,
+    fb: &mut crate::instrument::Frame,
+) -> ! {
+    use ssd1306::mode::DisplayConfig;
+    display.init().unwrap();
+    let mut n = 0;
+    loop {
+        crate::instrument::draw(engine, baked, buffers, n, fb).unwrap();
+        display.clear_buffer();
+        copy_frame(fb, display).unwrap();
+        display.flush().unwrap();
+        n = (n + 1) % crate::instrument::FRAMES;
+    }
+}

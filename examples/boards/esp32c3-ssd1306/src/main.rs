@@ -10,10 +10,9 @@ use core::ptr::addr_of_mut;
 use esp_hal::clock::CpuClock;
 use esp_hal::i2c::master::{Config, I2c};
 use esp_hal::time::Rate;
-use pbuffer_scenes::instrument::{self, Frame};
+use pbuffer_scenes::instrument::Frame;
 use pbuffer_scenes::panels;
 use pbuffer_scenes::scenes::{PanelFastBuffers, PanelFastEngine};
-use ssd1306::mode::DisplayConfig;
 
 // The application descriptor the ESP-IDF second-stage boot loader checks.
 esp_bootloader_esp_idf::esp_app_desc!();
@@ -46,8 +45,6 @@ fn main() -> ! {
     .with_sda(p.GPIO5)
     .with_scl(p.GPIO6);
     let mut display = panels::ssd1306_display(i2c);
-    display.init().unwrap();
-
     // SAFETY: main runs once; these are its only references to the statics.
     let (fb, buffers, engine) = unsafe {
         (
@@ -58,12 +55,5 @@ fn main() -> ! {
     };
     // The baked constants are checked once, at boot.
     let baked = part::panel_baked().unwrap();
-    let mut n = 0;
-    loop {
-        instrument::draw(engine, &baked, buffers, n, fb).unwrap();
-        display.clear_buffer();
-        panels::copy_frame(fb, &mut display).unwrap();
-        display.flush().unwrap();
-        n = (n + 1) % instrument::FRAMES;
-    }
+    panels::run_instrument_ssd1306(&mut display, engine, &baked, buffers, fb)
 }

@@ -10,13 +10,12 @@
 use core::ptr::addr_of_mut;
 
 use panic_halt as _;
-use pbuffer_scenes::instrument::{self, Frame};
+use pbuffer_scenes::instrument::Frame;
 use pbuffer_scenes::panels;
 use pbuffer_scenes::scenes::{PanelFastBuffers, PanelFastEngine};
 use rp2040_hal::fugit::RateExtU32;
 use rp2040_hal::gpio::{FunctionI2C, Pin, PullUp};
 use rp2040_hal::{self as hal, pac, Clock};
-use ssd1306::mode::DisplayConfig;
 
 /// The second-stage boot loader for the Pico's W25Q080 flash, first in flash (memory.x).
 #[link_section = ".boot2"]
@@ -71,8 +70,6 @@ fn main() -> ! {
         clocks.system_clock.freq(),
     );
     let mut display = panels::ssd1306_display(i2c);
-    display.init().unwrap();
-
     // SAFETY: main runs once; these are its only references to the statics.
     let (fb, buffers, engine) = unsafe {
         (
@@ -83,12 +80,5 @@ fn main() -> ! {
     };
     // The baked constants are checked once, at boot.
     let baked = part::panel_baked().unwrap();
-    let mut n = 0;
-    loop {
-        instrument::draw(engine, &baked, buffers, n, fb).unwrap();
-        display.clear_buffer();
-        panels::copy_frame(fb, &mut display).unwrap();
-        display.flush().unwrap();
-        n = (n + 1) % instrument::FRAMES;
-    }
+    panels::run_instrument_ssd1306(&mut display, engine, &baked, buffers, fb)
 }
