@@ -129,6 +129,7 @@ impl BakeOptions {
             ids: &mut [],
             slopes: &mut slopes,
             phases: &mut [],
+            segments: None,
         };
         let engine = FastRenderer::<U4, 0, 0>::new();
         let mut frames = FrameNeeds::default();

@@ -7,7 +7,9 @@ use std::cell::Cell;
 
 use pbuffer::render::Cull;
 use pbuffer::render::{
-    BakedMesh, CompactEdge, DashPhase, FacePlane, FastRenderer, FastVertex, FastWorkspace, NO_HOLE,
+    BakedMesh, CompactEdge, Contour, Crossing, DashPhase, FacePlane, FastRenderer, FastVertex,
+    FastWorkspace, Piercing, Run, SegmentLists, SegmentWorkspace, Segments, VertexFaces,
+    MAX_GRID_CELLS, NO_HOLE,
 };
 use pbuffer::{Dashes, MonoPalette};
 
@@ -82,6 +84,61 @@ pub struct FastBuffers {
     pub ids: Vec<u16>,
     pub slopes: Vec<u16>,
     pub phases: Vec<DashPhase>,
+    pub segments: SegmentBuffers,
+}
+
+/// Lent buffers of hidden lines by the segment, sized for any host frame.
+pub struct SegmentBuffers {
+    pub contours: Vec<Contour>,
+    pub stamps: Vec<u16>,
+    pub crossings: Vec<Crossing>,
+    pub cells: Vec<u16>,
+    pub entries: Vec<u16>,
+    pub runs: Vec<Run>,
+    pub counts: Vec<i16>,
+    pub queue: Vec<u16>,
+    pub starts: Vec<u16>,
+    pub at: Vec<u16>,
+}
+
+impl SegmentBuffers {
+    /// Room for a mesh of `vertices`, `faces` and `edges`: every side a contour,
+    /// and up to 65,535 crossings and grid entries.
+    pub fn new(vertices: usize, faces: usize, edges: usize) -> Self {
+        let contours = edges + 2 * faces;
+        Self {
+            contours: vec![Contour::default(); contours],
+            stamps: vec![0; contours],
+            crossings: vec![Crossing::default(); 65_535],
+            cells: vec![0; MAX_GRID_CELLS + 1],
+            entries: vec![0; 65_535],
+            runs: vec![Run::default(); edges],
+            counts: vec![0; vertices],
+            queue: vec![0; vertices],
+            starts: vec![0; vertices + 1],
+            at: vec![0; 2 * edges],
+        }
+    }
+
+    pub fn segments(&mut self) -> Segments<'_> {
+        Segments {
+            lists: SegmentLists::new(
+                &mut self.contours,
+                &mut self.stamps,
+                &mut self.crossings,
+                &mut self.cells,
+                &mut self.entries,
+            )
+            .expect("sized"),
+            work: SegmentWorkspace {
+                runs: &mut self.runs,
+                counts: &mut self.counts,
+                queue: &mut self.queue,
+                starts: &mut self.starts,
+                at: &mut self.at,
+            },
+        }
+    }
 }
 
 impl FastBuffers {
@@ -109,6 +166,7 @@ impl FastBuffers {
             // Room for the dash phases of `LINES` lines (engines with fewer use
             // a part).
             phases: vec![DashPhase::SCREEN; LINES],
+            segments: SegmentBuffers::new(vertices, faces, edges),
         }
     }
 
@@ -125,6 +183,7 @@ impl FastBuffers {
             ids: &mut self.ids,
             slopes: &mut self.slopes,
             phases: &mut self.phases,
+            segments: Some(self.segments.segments()),
         }
     }
 }
@@ -143,7 +202,18 @@ pub(crate) fn render_fast<Frac: LeEqU32>(
             e.hole = NO_HOLE;
         }
     }
+    let mut weld = vec![0u16; scene.mesh.vertices().len()];
+    let mut starts = vec![0u16; scene.mesh.vertices().len() + 1];
+    let mut around = vec![0u16; scene.mesh.indices().len()];
+    let faces_around = VertexFaces::bake(&scene.mesh, &mut weld, &mut starts, &mut around)
+        .map_err(|e| format!("vertex faces: {e}"))?;
+    let mut pairs = vec![Piercing::default(); 1 << 16];
+    let n = Piercing::bake(&scene.mesh, &baked.edges, &mut pairs)
+        .map_err(|e| format!("piercings: {e}"))?;
+    pairs.truncate(n);
     let mesh = BakedMesh::new(scene.mesh, &baked.planes, &baked.edges)
+        .and_then(|m| m.with_vertex_faces(faces_around))
+        .and_then(|m| m.with_piercings(&pairs))
         .map_err(|e| format!("baked mesh: {e}"))?;
     let (w, h) = (spec.width, spec.height);
     // Room for every face clipped, with six cut corners each.

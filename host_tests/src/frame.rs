@@ -162,6 +162,8 @@ pub struct RenderSpec {
     /// How hidden lines are dashed (the fast engine draws dashes along the edges;
     /// the others the pattern).
     pub dashes: pbuffer::Dashes,
+    /// How the fast engine finds hidden lines.
+    pub lines: pbuffer::render::LineVisibility,
 }
 
 impl Default for RenderSpec {
@@ -178,6 +180,7 @@ impl Default for RenderSpec {
             band: 240,
             pattern: "paper".into(),
             dashes: pbuffer::Dashes::Screen,
+            lines: pbuffer::render::LineVisibility::BySegment,
         }
     }
 }

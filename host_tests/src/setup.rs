@@ -514,6 +514,7 @@ pub fn settings(spec: &RenderSpec) -> Result<Settings, String> {
         },
         pattern,
         dashes: spec.dashes,
+        lines: spec.lines,
     })
 }
 
@@ -552,7 +553,35 @@ pub(crate) fn frame(
             ("working_ram_bytes".into(), working as u64),
             ("adjacency_build_bytes".into(), build_bytes as u64),
             ("time_us".into(), time_us),
-        ],
+        ]
+        .into_iter()
+        .chain(segment_stats(&stats.segments))
+        .collect(),
         depth_step: [stats.depth_step_near, stats.depth_step_far].map(f64::from),
     }
+}
+
+/// The `--stats` figures of hidden lines by the segment (none when the
+/// per-pixel test drew the lines).
+fn segment_stats(s: &pbuffer::render::SegmentStats) -> Vec<(String, u64)> {
+    if s.drawn == 0 && s.fallback == 0 {
+        return Vec::new();
+    }
+    [
+        ("segment_drawn_edges", s.drawn),
+        ("segment_contours", s.contours),
+        ("segment_pair_tests", s.pair_tests),
+        ("segment_crossings", s.crossings),
+        ("segment_nearer_crossings", s.nearer),
+        ("segment_piercings", s.piercings),
+        ("segment_boundaries", s.boundaries),
+        ("segment_seeds", s.seeds),
+        ("segment_reseeds", s.reseeds),
+        ("segment_negative_counts", s.negative),
+        ("segment_point_triangles", s.point_triangles),
+        ("segment_fallback", s.fallback),
+    ]
+    .into_iter()
+    .map(|(k, v)| (k.to_string(), u64::from(v)))
+    .collect()
 }

@@ -359,6 +359,7 @@ pub(crate) const DEFAULT_SETTINGS: Settings = Settings {
     cull: crate::Cull::Auto,
     pattern: crate::Pattern::PAPER,
     dashes: crate::render::Dashes::Screen,
+    lines: crate::render::LineVisibility::BySegment,
 };
 
 /// Lines on.
@@ -521,6 +522,7 @@ impl<const V: usize, const F: usize, const E: usize, const FACETS: usize, const 
             ids: &mut [],
             slopes,
             phases: &mut [],
+            segments: None,
         };
         Ok((ws, &mut self.engine))
     }

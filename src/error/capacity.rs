@@ -68,6 +68,26 @@ pub enum Capacity {
     /// fast engine's `phases` (`LINES` of them; none in a
     /// [`Drawing`](crate::Drawing), which therefore draws only screen dashes). Exact.
     DashPhases,
+    /// Contour edges of one frame of hidden lines by the segment
+    /// ([`SegmentLines`](crate::render::SegmentLines)' `CONTOURS`). Exact.
+    ContourEdges,
+    /// Crossings of drawn edges with nearer contour edges in one frame of hidden
+    /// lines by the segment ([`SegmentLines`](crate::render::SegmentLines)'
+    /// `CROSSINGS`). At least (the edge where it ran out).
+    Crossings,
+    /// Entries of the contour grid in one frame of hidden lines by the segment
+    /// ([`SegmentLines`](crate::render::SegmentLines)' `CELL_ENTRIES`). Exact.
+    GridEntries,
+    /// Faces that do not hide one drawn edge (its own, and the faces beyond an own
+    /// face collapsed on an outline): fixed at
+    /// [`MAX_NOT_HIDING`](crate::render::MAX_NOT_HIDING). At least.
+    NotHidingFaces,
+    /// Pairs of an edge and a triangle that may meet in 3-D: the piercings
+    /// [`Piercing::bake`](crate::render::Piercing::bake) writes. Exact.
+    Piercings,
+    /// Faces around the vertices (one a face corner): the baked
+    /// [`VertexFaces`](crate::render::VertexFaces). Exact.
+    VertexFaces,
     /// Corners of one face: the fast engine's [`MAX_CORNERS`](crate::render::MAX_CORNERS)
     /// (fixed); the other engines' `POLY` const parameter. Exact.
     FaceCorners,
@@ -170,6 +190,12 @@ impl Capacity {
             Self::EdgeBits => "edge bits",
             Self::ActiveFacets => "active facets (FACETS)",
             Self::ActiveLines => "active lines (LINES)",
+            Self::ContourEdges => "contour edges (CONTOURS)",
+            Self::Crossings => "crossings (CROSSINGS)",
+            Self::GridEntries => "contour grid entries (CELL_ENTRIES)",
+            Self::NotHidingFaces => "faces not hiding a line (MAX_NOT_HIDING)",
+            Self::VertexFaces => "faces around vertices (corners)",
+            Self::Piercings => "piercing pairs",
             Self::ClippedCorners => "clipped corners (CLIPPED_CORNERS, pool)",
             Self::RowWidth => "row width (W)",
             Self::Rows => "rows (H, list heads)",

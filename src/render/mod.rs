@@ -37,12 +37,14 @@ pub use engines::span_kernel_twin_mismatches;
 pub(crate) use engines::{faces_view, FaceViews, InstanceViews, OneMesh};
 pub use engines::{
     BakedMesh, BakedSource, BvhNode, CodeFill, CodeFillRenderer, CodeWorkspace, CompactEdge,
-    DashPhase, Depth, DepthOrder, FacePlane, Fast, FastRenderer, FastVertex, FastWorkspace,
-    FrameNeeds, GreyPalette, GreyShades, OneSegment, PaintOrder, Painter, PainterRenderer, RayFace,
-    Raycast, RaycastFigures, RaycastRenderer, RaycastSizes, RaycastStorage, RowCodes, Scheme,
-    SchemeCoding, SchemeRenderer, ScreenSegments, SmallFace, Visibility, Warnock, WarnockArea,
-    WarnockFace, WarnockRenderer, WarnockSizes, WarnockStorage, ZBuffer, ZBufferRenderer,
-    FAST_MAX_SUBPIXEL_BITS, MAX_CHECKED_FACES, MAX_CORNERS, MAX_FAST_FACES, MAX_HOLES, NO_HOLE,
+    Contour, Crossing, DashPhase, Depth, DepthOrder, FacePlane, Fast, FastRenderer, FastVertex,
+    FastWorkspace, FrameNeeds, GreyPalette, GreyShades, OneSegment, PaintOrder, Painter,
+    PainterRenderer, Piercing, RayFace, Raycast, RaycastFigures, RaycastRenderer, RaycastSizes,
+    RaycastStorage, RowCodes, Run, Scheme, SchemeCoding, SchemeRenderer, ScreenSegments,
+    SegmentLines, SegmentLists, SegmentStats, SegmentWorkspace, Segments, SmallFace, VertexFaces,
+    Visibility, Warnock, WarnockArea, WarnockFace, WarnockRenderer, WarnockSizes, WarnockStorage,
+    ZBuffer, ZBufferRenderer, FAST_MAX_SUBPIXEL_BITS, MAX_CHECKED_FACES, MAX_CORNERS,
+    MAX_FAST_FACES, MAX_GRID_CELLS, MAX_HOLES, MAX_NOT_HIDING, NO_HOLE, PIERCING_MARGIN,
 };
 pub use idpass::IdWorkspace;
 pub use pick::{pick, Pick, PickWorkspace, PickedEdge};
@@ -100,6 +102,23 @@ pub enum Cull {
     Auto,
 }
 
+/// How the fast engine decides which parts of a line are hidden in the line
+/// modes ([`DrawMode::HiddenRemoved`], [`DrawMode::Dashed`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum LineVisibility {
+    /// By the segment, at object precision: each drawn edge is cut where it
+    /// passes behind a nearer contour, and no face is filled
+    /// ([`SegmentLines`]). Needs the mesh's [`VertexFaces`] and the lent
+    /// [`FastWorkspace::segments`]; without them, and in a frame with a line or
+    /// contour end outside the guard box or near..far, the per-pixel test draws.
+    #[default]
+    BySegment,
+    /// By the pixel: every face is filled into a row depth buffer and each line
+    /// pixel is tested against it. The other engines always test by the pixel.
+    ByPixel,
+}
+
 /// How hidden lines are dashed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -140,6 +159,9 @@ pub struct Settings {
     pub pattern: Pattern,
     /// How hidden lines are dashed: by the pattern (the default) or along each edge.
     pub dashes: Dashes,
+    /// How the fast engine finds hidden lines (the other engines test by the
+    /// pixel).
+    pub lines: LineVisibility,
 }
 
 /// Rows of depth and id storage for bands of `band_rows` rows in a frame `height`
@@ -226,6 +248,9 @@ pub struct Stats {
     pub depth_step_near: f32,
     /// The same at the farthest drawn distance (larger under perspective).
     pub depth_step_far: f32,
+    /// Fast engine, hidden lines by the segment: the stage's counts (all 0 when
+    /// the per-pixel test drew the lines).
+    pub segments: SegmentStats,
 }
 
 /// One frame's fixed inputs, shared by the band passes.

@@ -272,6 +272,7 @@ impl<
             ids: &mut [],
             slopes: &mut self.slopes,
             phases: &mut [],
+            segments: None,
         }
     }
 }
@@ -353,6 +354,7 @@ fn settings(mode: DrawMode) -> Settings {
         cull: Cull::Auto,
         pattern: Pattern::PAPER,
         dashes: Dashes::Screen,
+        lines: pbuffer::render::LineVisibility::BySegment,
     }
 }
 

@@ -404,11 +404,11 @@ fn segment_lines_sweep() {
     use host_tests::qi::QiCounts;
     let count = env("PBUFFER_SWEEP_VIEWS", VIEWS as u64) as usize;
     let mut rng = Rng::new(env("PBUFFER_SWEEP_SEED", SEED));
-    let names = ["fast per-pixel", "fast segments", "zbuffer"];
-    let mut over_limits = [0usize; 3];
+    let names = ["fast per-pixel", "fast segments", "zbuffer", "prototype"];
+    let mut over_limits = [0usize; 4];
     // Frames over the limits at 400x240 (the rest are 128x64).
-    let mut over_large = [0usize; 3];
-    let mut misclassified = [0f64; 3];
+    let mut over_large = [0usize; 4];
+    let mut misclassified = [0f64; 4];
     let mut frames = 0usize;
     let mut all = QiCounts::default();
     let mut worst: Vec<(f64, String)> = Vec::new();
@@ -421,11 +421,32 @@ fn segment_lines_sweep() {
             }
             let rf = reference_frame(&mesh, &view.camera, &spec(EngineSpec::ZBuffer, view, cull))
                 .unwrap();
-            let fast =
+            let per_pixel = RenderSpec {
+                lines: pbuffer::render::LineVisibility::ByPixel,
+                ..spec(EngineSpec::Fast, view, cull)
+            };
+            let fast = render_frame(&mesh, &view.camera, &per_pixel).unwrap();
+            let seg =
                 render_frame(&mesh, &view.camera, &spec(EngineSpec::Fast, view, cull)).unwrap();
-            let (seg, counts) = with_segment_lines(|| {
-                render_frame(&mesh, &view.camera, &spec(EngineSpec::Fast, view, cull)).unwrap()
-            });
+            let (proto, counts) =
+                with_segment_lines(|| render_frame(&mesh, &view.camera, &per_pixel).unwrap());
+            if !only.is_empty() {
+                let differ = seg
+                    .lines
+                    .iter()
+                    .zip(&proto.lines)
+                    .filter(|(a, b)| a != b)
+                    .count();
+                println!("{name} view {k}: library and prototype differ at {differ} pixels");
+                println!(
+                    "library: {:?}",
+                    seg.stats
+                        .iter()
+                        .filter(|(k, _)| k.starts_with("segment"))
+                        .collect::<Vec<_>>()
+                );
+                println!("prototype: {counts:?}");
+            }
             all.add(&counts);
             // The same pixels as the per-pixel test's, only their classes decided
             // another way.
@@ -438,7 +459,7 @@ fn segment_lines_sweep() {
             let z =
                 render_frame(&mesh, &view.camera, &spec(EngineSpec::ZBuffer, view, cull)).unwrap();
             frames += 1;
-            for (i, f) in [&fast, &seg, &z].into_iter().enumerate() {
+            for (i, f) in [&fast, &seg, &z, &proto].into_iter().enumerate() {
                 let m = measure(f, &rf, true);
                 let lim = limits(true);
                 if m.lines.iter().zip(lim.lines).any(|(v, c)| *v > c + 1e-9) {
@@ -461,7 +482,7 @@ fn segment_lines_sweep() {
             }
         }
         let n = (frames - before.2).max(1) as f64;
-        let per: Vec<String> = (0..3)
+        let per: Vec<String> = (0..4)
             .map(|i| {
                 format!(
                     "{} over, {:.4} %",
@@ -473,8 +494,8 @@ fn segment_lines_sweep() {
         let mut units = all;
         units.sub(&before.3);
         println!(
-            "{name}: per-pixel {} | segments {} | zbuffer {} | per frame: {:.0} drawn, {:.0} contours, {:.0} box pairs, {:.0} crossings, {:.0} nearer, {:.1} seeds, {:.2} re-seeds, {:.0} point-test triangles, {:.1} piercings",
-            per[0], per[1], per[2],
+            "{name}: per-pixel {} | segments {} | zbuffer {} | prototype {} | per frame: {:.0} drawn, {:.0} contours, {:.0} box pairs, {:.0} crossings, {:.0} nearer, {:.1} seeds, {:.2} re-seeds, {:.0} point-test triangles, {:.1} piercings",
+            per[0], per[1], per[2], per[3],
             units.drawn as f64 / n, units.contours as f64 / n, units.box_pairs as f64 / n,
             units.crossings as f64 / n, units.nearer as f64 / n, units.seeds as f64 / n,
             units.reseeds as f64 / n, units.point_faces as f64 / n, units.piercings as f64 / n

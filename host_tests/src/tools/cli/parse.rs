@@ -56,6 +56,7 @@ fn options(f: Flags) -> Result<Options, String> {
         band: d.spec.band,
         pattern: f.pattern.unwrap_or(d.spec.pattern),
         dashes: f.dashes.unwrap_or(d.spec.dashes),
+        lines: f.line_test.unwrap_or(d.spec.lines),
     };
     // The last of --fov and --ortho given wins (they override each other in clap).
     let projection = match (f.fov, f.ortho) {

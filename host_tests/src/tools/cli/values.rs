@@ -170,6 +170,15 @@ pub fn pattern(s: &str) -> Result<String, String> {
     }
 }
 
+/// `--line-test segment|pixel`: how the fast engine finds hidden lines.
+pub fn line_test(s: &str) -> Result<pbuffer::render::LineVisibility, String> {
+    match given(s)? {
+        "segment" => Ok(pbuffer::render::LineVisibility::BySegment),
+        "pixel" => Ok(pbuffer::render::LineVisibility::ByPixel),
+        _ => Err(format!("`{s}` is not segment or pixel")),
+    }
+}
+
 /// `--dashes screen|iso|DASH,GAP`: how hidden lines are dashed.
 pub fn dashes(s: &str) -> Result<pbuffer::Dashes, String> {
     match given(s)? {

@@ -35,6 +35,8 @@ pub struct BakedMesh<'a> {
     planes: &'a [FacePlane],
     edges: &'a [CompactEdge],
     closed: bool,
+    around: super::VertexFaces<'a>,
+    piercings: &'a [super::Piercing],
 }
 
 impl<'a> BakedMesh<'a> {
@@ -139,6 +141,8 @@ impl<'a> BakedMesh<'a> {
             planes,
             edges,
             closed,
+            around: super::VertexFaces::EMPTY,
+            piercings: &[],
         })
     }
 
@@ -155,7 +159,70 @@ impl<'a> BakedMesh<'a> {
             planes,
             edges,
             closed,
+            around: super::VertexFaces::EMPTY,
+            piercings: &[],
         }
+    }
+
+    /// This mesh with the faces around each vertex (baked by
+    /// [`VertexFaces::bake`](super::VertexFaces::bake) from this mesh), which hidden
+    /// lines by the segment need ([`LineVisibility::BySegment`](crate::render::LineVisibility));
+    /// without them the line modes use the per-pixel test. A table shorter than
+    /// the mesh's vertices + 1 or its corners is `CapacityExceeded`.
+    pub fn with_vertex_faces(mut self, around: super::VertexFaces<'a>) -> Result<Self, Error> {
+        let mesh = &self.mesh;
+        need(Capacity::Vertices, mesh.vertices().len(), around.weld.len())?;
+        need(
+            Capacity::VertexFaces,
+            mesh.vertices().len() + 1,
+            around.starts.len(),
+        )?;
+        need(
+            Capacity::VertexFaces,
+            mesh.indices().len(),
+            around.faces.len(),
+        )?;
+        self.around = around;
+        Ok(self)
+    }
+
+    /// This mesh with the (edge, triangle) pairs that may meet, from
+    /// [`Piercing::bake`](super::Piercing::bake) on this mesh and its edges: hidden
+    /// lines by the segment split the edges where they pass through the
+    /// triangles. Pairs out of range are `BadEdgeList` (`FaceOutOfRange`), out of order
+    /// `BadEdgeList` (`NotSorted`), naming the pair.
+    pub fn with_piercings(mut self, pairs: &'a [super::Piercing]) -> Result<Self, Error> {
+        let faces = self.mesh.face_count();
+        let mut last = 0;
+        for (i, p) in pairs.iter().enumerate() {
+            let corners = self.mesh.face(usize::from(p.face)).len();
+            let fits = usize::from(p.edge) < self.edges.len()
+                && usize::from(p.face) < faces
+                && p.fan >= 1
+                && usize::from(p.fan) + 1 < corners.max(1);
+            let problem = if !fits {
+                EdgeProblem::FaceOutOfRange
+            } else if p.edge < last {
+                EdgeProblem::NotSorted
+            } else {
+                last = p.edge;
+                continue;
+            };
+            return Err(Error::BadEdgeList { edge: i, problem });
+        }
+        self.piercings = pairs;
+        Ok(self)
+    }
+
+    /// The baked piercing pairs (none when not given).
+    pub fn piercings(&self) -> &'a [super::Piercing] {
+        self.piercings
+    }
+
+    /// The faces around each vertex ([`VertexFaces::EMPTY`](super::VertexFaces::EMPTY)
+    /// when not given).
+    pub fn vertex_faces(&self) -> super::VertexFaces<'a> {
+        self.around
     }
 
     /// The mesh.

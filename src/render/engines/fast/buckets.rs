@@ -17,7 +17,8 @@ pub(super) struct Lists {
 }
 
 impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, FACETS, LINES> {
-    /// Facing bits, and the per-row lists of drawn faces and feature lines.
+    /// Facing bits, and the per-row lists of drawn faces (when `faces`) and feature
+    /// lines.
     pub(super) fn lists<V: FaceViews>(
         &self,
         views: V,
@@ -26,6 +27,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         settings: &Settings,
         ws: &mut FastWorkspace<'_>,
         viewport: Viewport,
+        faces: bool,
     ) -> Lists {
         let mesh = baked.mesh();
         let s = map.s;
@@ -44,7 +46,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             feature_edges: 0,
             columns: (usize::MAX, 0),
         };
-        let depth = settings.mode.needs_depth();
+        let depth = settings.mode.needs_depth() && faces;
         // Back faces that no ray reaches are skipped (see `holes`).
         let holes = if cull {
             None

@@ -4,8 +4,10 @@
 
 use fixed::types::extra::LeEqU32;
 
+use crate::render::{DrawMode, LineVisibility};
 use crate::Capacity;
 use crate::Pattern;
+use segments::{classify, Crossing, Run, Scene, SegmentStats};
 
 use super::*;
 
@@ -88,7 +90,20 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         let mesh = baked.mesh();
         let (width, height) = (usize::from(viewport.width), usize::from(viewport.height));
         let map = ScreenMap::with_vertices(camera, viewport, s, mesh.vertices(), ws.vertices);
-        let lists = self.lists(views, baked, &map, settings, ws, viewport);
+        let by_segment = settings.lines == LineVisibility::BySegment
+            && matches!(settings.mode, DrawMode::HiddenRemoved | DrawMode::Dashed)
+            && ws.segments.is_some()
+            && !baked.vertex_faces().starts.is_empty();
+        let mut lists = self.lists(views, baked, &map, settings, ws, viewport, !by_segment);
+        let mut segment_stats = SegmentStats::default();
+        let pieces = by_segment
+            && self
+                .by_segment(baked, settings, ws, viewport, &mut segment_stats)
+                .map_err(Error::widen)?;
+        if by_segment && !pieces {
+            // Left to the per-pixel test: the faces' lists too.
+            lists = self.lists(views, baked, &map, settings, ws, viewport, true);
+        }
         let (depth_step_near, depth_step_far) = map.depth_steps();
         let mut stats = Stats {
             faces: mesh.face_count() as u32,
@@ -99,6 +114,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             depth_buffer_bytes: (width * 4) as u32,
             depth_step_near,
             depth_step_far,
+            segments: segment_stats,
             ..Stats::default()
         };
         self.facets.clear();
@@ -114,8 +130,13 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             ids,
             slopes,
             phases,
+            segments,
             ..
         } = ws;
+        let (runs, boundaries): (&[Run], &[Crossing]) = match segments {
+            Some(seg) if pieces => (seg.work.runs, seg.lists.crossings()),
+            _ => (&[], &[]),
+        };
         let (face_heads, line_heads) = heads.split_at(height);
         let row = row.get_mut(..width).unwrap_or_default();
         clear_row(row);
@@ -129,8 +150,14 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         };
         let mut pool_used = 0usize;
         let mut shades = Shades::new(baked.planes(), map.viewpoint, views);
-        let depth = settings.mode.needs_depth();
-        let test = if depth { LineTest::Row } else { LineTest::None };
+        let depth = settings.mode.needs_depth() && !pieces;
+        let test = if pieces {
+            LineTest::Pieces
+        } else if depth {
+            LineTest::Row
+        } else {
+            LineTest::None
+        };
         for y in 0..height {
             let yi = y as i32;
             if depth {
@@ -164,7 +191,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                         map: &map,
                         cache: vertices,
                     };
-                    self.activate_line::<ALONG>(dashing, seen, phases, e, &mut stats)
+                    self.activate_line::<ALONG>(dashing, seen, phases, runs, e, &mut stats)
                         .map_err(Error::widen)?;
                     e = line_links.get(usize::from(e)).copied().unwrap_or(NONE);
                 }
@@ -208,12 +235,12 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
                         line: 0,
                     };
                     line_row(
-                        lines, yi, s, test, row, &faces, &beside, visible, hidden, gaps,
+                        lines, yi, s, test, row, &faces, &beside, boundaries, visible, hidden, gaps,
                     );
                 } else {
                     let gaps = NoGaps;
                     line_row(
-                        lines, yi, s, test, row, &faces, &beside, visible, hidden, gaps,
+                        lines, yi, s, test, row, &faces, &beside, boundaries, visible, hidden, gaps,
                     );
                 }
             }
@@ -249,6 +276,39 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         }
         sink.flush().map_err(Error::Target)?;
         Ok(stats)
+    }
+
+    /// Hidden lines by the segment: classifies the frame's drawn edges into the
+    /// lent runs and boundaries. False: left to the per-pixel test.
+    fn by_segment(
+        &self,
+        baked: &BakedMesh<'_>,
+        settings: &Settings,
+        ws: &mut FastWorkspace<'_>,
+        viewport: Viewport,
+        stats: &mut SegmentStats,
+    ) -> Result<bool, Error> {
+        let Some(seg) = ws.segments.as_mut() else {
+            return Ok(false);
+        };
+        let cull = match settings.cull {
+            Cull::On => true,
+            Cull::Off => false,
+            Cull::Auto => baked.is_closed(),
+        };
+        let scene = Scene {
+            mesh: baked.mesh(),
+            edges: baked.edges(),
+            around: baked.vertex_faces(),
+            piercings: baked.piercings(),
+            cache: ws.vertices,
+            facing: ws.facing,
+            cull,
+            s: Frac::U32,
+            width: viewport.width,
+            height: viewport.height,
+        };
+        classify(&scene, &mut seg.lists, &mut seg.work, stats)
     }
 
     /// The lent storage and the frame's limits.
@@ -461,6 +521,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         dashing: Dashing,
         seen: OnScreen<'_, '_>,
         phases: &mut [DashPhase],
+        runs: &[Run],
         e: u16,
         stats: &mut Stats,
     ) -> Result<(), Error> {
@@ -491,7 +552,10 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         };
         if let Some((a, b)) = ends {
             let along = ALONG.then(|| (dashing, dash::anchor(map, baked, edge, ea, a)));
-            if let Some((line, phase)) = ActiveLine::new(a, b, edge.faces, keys, map.s, along) {
+            if let Some((mut line, phase)) = ActiveLine::new(a, b, edge.faces, keys, map.s, along) {
+                if let Some(run) = runs.get(usize::from(e)) {
+                    line.with_pieces(run.first, run.len, run.hidden);
+                }
                 let full = Error::CapacityExceeded {
                     what: Capacity::ActiveLines,
                     needed: LINES + 1,

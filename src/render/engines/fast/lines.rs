@@ -24,6 +24,7 @@ use heapless::Vec;
 use super::dash::{DashPhase, Dashing};
 pub(super) use super::dash::{GapMask, Gaps, NoGaps};
 use super::float_int::{to_i32, to_u32};
+use super::segments::{Crossing, PLACE_BITS};
 use super::step::Stepper;
 use super::view::FastVertex;
 use crate::camera::sqrt;
@@ -66,6 +67,13 @@ pub(super) struct ActiveLine {
     /// face is nearer at every edge point of the pixel (see
     /// [`sure`](Self::sure)): such pixels skip the rules.
     near_sure: u32,
+    /// Hidden lines by the segment: the next boundary of the line's pieces in
+    /// the walk's direction (an index into the frame's boundaries), the first
+    /// and end of its boundaries, and whether the piece walked now is hidden.
+    piece: u16,
+    piece_first: u16,
+    piece_end: u16,
+    piece_hidden: bool,
 }
 
 /// What the line test knows of the face nearest at a pixel.
@@ -98,6 +106,8 @@ pub(super) enum LineTest {
     None,
     /// Tested against the row.
     Row,
+    /// Hidden where its pieces say (hidden lines by the segment).
+    Pieces,
 }
 
 /// What the lines' pixels in row `y` are tested against (S = `s` sub-pixel bits):
@@ -113,6 +123,8 @@ struct LineRow<'a, F, B> {
     row: &'a [u32],
     faces: &'a F,
     beside: &'a B,
+    /// The frame's piece boundaries (with [`LineTest::Pieces`]).
+    pieces: &'a [Crossing],
 }
 
 /// A pixel centre of a line: centre `k` along its major axis, and the line's minor
@@ -202,8 +214,56 @@ impl ActiveLine {
             near_touches: false,
             near_value: 0,
             near_sure: u32::MAX,
+            piece: 0,
+            piece_first: 0,
+            piece_end: 0,
+            piece_hidden: false,
         };
         Some((line, phase))
+    }
+
+    /// Gives the line its pieces (hidden lines by the segment): boundaries
+    /// `first..first + len` of the frame's list, in their edge's major axis from
+    /// its low end, and whether it is `hidden` there.
+    pub fn with_pieces(&mut self, first: u16, len: u16, hidden: bool) {
+        let end = first.saturating_add(len);
+        self.piece_first = first;
+        self.piece_end = end;
+        if self.dir > 0 {
+            self.piece = first;
+            self.piece_hidden = hidden;
+        } else {
+            // Walked from the high end: past every boundary.
+            self.piece = end;
+            self.piece_hidden = hidden ^ (len % 2 == 1);
+        }
+    }
+
+    /// Is the line hidden at centre `k`, by its pieces? Moves the line's place
+    /// among them (centres come in the walk's order).
+    #[inline(always)]
+    fn piece_hidden(&mut self, k: i32, pieces: &[Crossing], s: u32) -> bool {
+        let c = ((2 * k + 1) << s) << PLACE_BITS;
+        if self.dir > 0 {
+            while self.piece < self.piece_end
+                && pieces
+                    .get(usize::from(self.piece))
+                    .is_some_and(|b| b.place() < c)
+            {
+                self.piece += 1;
+                self.piece_hidden = !self.piece_hidden;
+            }
+        } else {
+            while self.piece > self.piece_first
+                && pieces
+                    .get(usize::from(self.piece) - 1)
+                    .is_some_and(|b| b.place() >= c)
+            {
+                self.piece -= 1;
+                self.piece_hidden = !self.piece_hidden;
+            }
+        }
+        self.piece_hidden
     }
 
     /// The last row the line is active in when made active at row `y`: where
@@ -320,6 +380,18 @@ impl ActiveLine {
         // looked at, as in `hidden_by`): 1,800 of suzanne's 3,070 pixels a frame
         // that pass the first. Kept inline: out of line, the rules' call cost
         // more than the margin saved.
+        if at.test == LineTest::Pieces {
+            let hide = self.piece_hidden(c.k, at.pieces, at.s);
+            let mask = if hide { hidden } else { visible };
+            let x = x as usize;
+            if let Some(w) = mask.get_mut(x / 32) {
+                *w |= 1 << (x % 32);
+            }
+            if hide {
+                gaps.mark(c.k, x);
+            }
+            return;
+        }
         let hide = at.test == LineTest::Row
             && cell & 0xFFFF_0000 > c.d.saturating_add(self.bias)
             && if cell as u16 == self.near
@@ -504,6 +576,7 @@ pub(super) fn line_row<const LINES: usize>(
     row: &[u32],
     faces: &impl FaceSlopes,
     beside: &impl Fn(u16, [u32; 2], (i32, i32), bool) -> Beside,
+    pieces: &[Crossing],
     visible: &mut [u32],
     hidden: &mut [u32],
     mut gaps: impl Gaps,
@@ -515,6 +588,7 @@ pub(super) fn line_row<const LINES: usize>(
         row,
         faces,
         beside,
+        pieces,
     };
     let mut i = 0;
     while let Some(line) = lines.get_mut(i) {

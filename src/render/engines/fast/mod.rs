@@ -64,6 +64,7 @@ mod needs;
 mod planes;
 mod polygon;
 mod row_out;
+mod segments;
 mod step;
 mod view;
 mod views;
@@ -80,6 +81,10 @@ pub use facets::twin_mismatches as span_kernel_twin_mismatches;
 pub use facets::MAX_CORNERS;
 pub use holes::MAX_CHECKED_FACES;
 pub use needs::FrameNeeds;
+pub use segments::{
+    Contour, Crossing, Piercing, Run, SegmentLines, SegmentLists, SegmentStats, SegmentWorkspace,
+    Segments, VertexFaces, MAX_GRID_CELLS, MAX_NOT_HIDING, PIERCING_MARGIN,
+};
 pub use view::FastVertex;
 pub(crate) use views::{FaceViews, InstanceViews, OneMesh};
 
@@ -145,6 +150,10 @@ pub struct FastWorkspace<'s> {
     /// The active lines' dash phases, one for each of the engine's `LINES`, with
     /// [`Dashes::Along`](crate::render::Dashes::Along); else it may be empty.
     pub phases: &'s mut [DashPhase],
+    /// Storage for hidden lines by the segment
+    /// ([`LineVisibility::BySegment`](crate::render::LineVisibility)); `None`:
+    /// the line modes test by the pixel.
+    pub segments: Option<Segments<'s>>,
 }
 
 impl FastWorkspace<'_> {
@@ -162,6 +171,10 @@ impl FastWorkspace<'_> {
             + size_of_val(self.ids)
             + size_of_val(self.slopes)
             + size_of_val(self.phases)
+            + self
+                .segments
+                .as_ref()
+                .map_or(0, |s| s.lists.bytes() + s.work.bytes())
     }
 }
 

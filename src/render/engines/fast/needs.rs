@@ -166,7 +166,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         // Each pass counts in the other kind's half of the list heads, so the lists
         // are built again for the second.
         if settings.mode.needs_depth() {
-            self.lists(views, baked, map, settings, ws, viewport);
+            self.lists(views, baked, map, settings, ws, viewport, true);
             let FastWorkspace {
                 vertices,
                 face_links,
@@ -181,7 +181,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
             needs.clipped_corners = pool;
         }
         if settings.mode.draws_lines() {
-            self.lists(views, baked, map, settings, ws, viewport);
+            self.lists(views, baked, map, settings, ws, viewport, true);
             let FastWorkspace {
                 vertices,
                 line_links,

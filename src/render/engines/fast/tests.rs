@@ -74,6 +74,7 @@ impl Buffers {
             ids: &mut [],
             slopes: &mut self.slopes,
             phases: &mut [],
+            segments: None,
         }
     }
 }

@@ -1,0 +1,556 @@
+//! Contour edges, their screen grid, and each drawn edge's crossings with the
+//! nearer ones.
+
+use heapless::Vec;
+#[cfg(feature = "std")]
+extern crate std;
+
+use super::exact::{orient, segment_minus, side_with, Pt};
+use super::piercings::pierce;
+use super::{
+    fan, Contour, Crossing, Run, Scene, SegmentLists, SegmentStats, MAX_GRID_CELLS, MAX_NOT_HIDING,
+    PLACE_BITS,
+};
+use crate::render::engines::fast::edge::CompactEdge;
+use crate::render::engines::fast::float_int::to_i32;
+use crate::{Capacity, Error};
+
+/// The faces that do not hide one drawn edge.
+pub(super) type NotHiding = Vec<u16, MAX_NOT_HIDING>;
+
+/// The drawn triangles of `faces` on side `p`-`q` (`p < q`) and the side of it
+/// each lies on: a contour when they do not cancel.
+fn side_record(scene: &Scene<'_, '_>, p: u16, q: u16, faces: &[u16]) -> (Contour, i32) {
+    let (pp, pq) = (scene.p(p), scene.p(q));
+    let mut c = Contour {
+        a: p,
+        b: q,
+        ..Contour::default()
+    };
+    let mut sum = 0;
+    for (i, &f) in faces.iter().enumerate() {
+        if faces.get(..i).is_some_and(|before| before.contains(&f)) || !scene.drawn(f) {
+            continue;
+        }
+        let corners = scene.corners(f);
+        for k in 1..corners.len().saturating_sub(1) {
+            let t = scene.fan(corners, k);
+            for j in 0..3 {
+                let (u, v, r) = (t[j], t[(j + 1) % 3], t[(j + 2) % 3]);
+                if (u.min(v), u.max(v)) != (p, q) || u == v {
+                    continue;
+                }
+                let s = orient(pp, pq, scene.p(r)).signum() as i8;
+                if s == 0 {
+                    continue;
+                }
+                sum += i32::from(s);
+                if let (Some(fs), Some(ss)) = (
+                    c.faces.get_mut(usize::from(c.count)),
+                    c.sides.get_mut(usize::from(c.count)),
+                ) {
+                    *fs = f;
+                    *ss = s;
+                    c.count += 1;
+                }
+            }
+        }
+    }
+    (c, sum)
+}
+
+/// The edge `p`-`q` (`p < q`) of the mesh's edge list.
+fn edge_between<'e>(edges: &'e [CompactEdge], p: u16, q: u16) -> Option<&'e CompactEdge> {
+    let i = edges.partition_point(|e| (e.a, e.b) < (p, q));
+    match edges.get(i) {
+        Some(e) if (e.a, e.b) == (p, q) => Some(e),
+        _ => edges.iter().find(|e| (e.a, e.b) == (p, q)),
+    }
+}
+
+/// Finds the frame's contours into `out`: the mesh's edges and its faces' fan
+/// diagonals whose drawn triangles do not lie one on each side. `None`: a
+/// contour has an end outside.
+pub(super) fn find(scene: &Scene<'_, '_>, out: &mut [Contour]) -> Result<Option<usize>, Error> {
+    let mut n = 0usize;
+    let mut push = |c: Contour, n: &mut usize| -> Result<bool, Error> {
+        if !scene.inside(c.a) || !scene.inside(c.b) {
+            return Ok(false);
+        }
+        match out.get_mut(*n) {
+            Some(slot) => *slot = c,
+            None => {
+                return Err(Error::CapacityExceeded {
+                    what: Capacity::ContourEdges,
+                    needed: *n + 1,
+                    capacity: out.len(),
+                })
+            }
+        }
+        *n += 1;
+        Ok(true)
+    };
+    let mut short = None;
+    for e in scene.edges {
+        let (c, sum) = side_record(scene, e.a, e.b, &e.faces);
+        if sum != 0 {
+            match push(c, &mut n) {
+                Ok(true) => {}
+                Ok(false) => return Ok(None),
+                Err(err) => {
+                    short.get_or_insert(err);
+                    n += 1;
+                }
+            }
+        }
+    }
+    for f in 0..scene.mesh.face_count() as u16 {
+        let corners = scene.corners(f);
+        for i in 2..corners.len().saturating_sub(1) {
+            let t = scene.fan(corners, i);
+            let (p, q) = (t[0].min(t[1]), t[0].max(t[1]));
+            let (c, sum) = side_record(scene, p, q, &[f]);
+            if sum != 0 {
+                match push(c, &mut n) {
+                    Ok(true) => {}
+                    Ok(false) => return Ok(None),
+                    Err(err) => {
+                        short.get_or_insert(err);
+                        n += 1;
+                    }
+                }
+            }
+        }
+    }
+    if short.is_some() {
+        return Err(Error::CapacityExceeded {
+            what: Capacity::ContourEdges,
+            needed: n,
+            capacity: out.len(),
+        });
+    }
+    Ok(Some(n))
+}
+
+/// The faces that do not hide drawn edge `e`: its own, and where it is an
+/// outline (a boundary, or between a face that faces the eye and one that does
+/// not), the faces beyond an own face's side that snapping laid within one step
+/// of the edge (the conventions' "Where snapping moves a face's side across an
+/// outline").
+pub(super) fn not_hiding(scene: &Scene<'_, '_>, e: &CompactEdge) -> Result<NotHiding, Error> {
+    let mut out = NotHiding::new();
+    let full = |needed| Error::CapacityExceeded {
+        what: Capacity::NotHidingFaces,
+        needed,
+        capacity: MAX_NOT_HIDING,
+    };
+    let [f, g] = e.faces;
+    out.push(f).map_err(|_| full(1))?;
+    if g != f {
+        out.push(g).map_err(|_| full(2))?;
+    }
+    let outline = g == f || scene.facing(f) != scene.facing(g);
+    if !outline {
+        return Ok(out);
+    }
+    let (pa, pb) = (scene.p(e.a), scene.p(e.b));
+    let len2 = i64::from(pb.x - pa.x).pow(2) + i64::from(pb.y - pa.y).pow(2);
+    let near = |v: u16| {
+        let o = orient(pa, pb, scene.p(v));
+        o.unsigned_abs() < 1 << 20 && o * o <= len2
+    };
+    let own = out.clone();
+    for &f in &own {
+        let c = scene.corners(f);
+        for i in 0..c.len() {
+            let (p, q) = (scene.corner(c, i), scene.corner(c, (i + 1) % c.len()));
+            let (p, q) = (p.min(q), p.max(q));
+            if (p, q) == (e.a, e.b) || !near(p) || !near(q) {
+                continue;
+            }
+            if let Some(beyond) = edge_between(scene.edges, p, q) {
+                for h in beyond.faces {
+                    if !out.contains(&h) {
+                        let needed = out.len() + 1;
+                        out.push(h).map_err(|_| full(needed))?;
+                    }
+                }
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// The contour grid: cells of `2^shift` sub-pixel units, `cols` x `rows`, each
+/// cell's contours in `lists.entries` from `lists.cells`.
+pub(super) struct Grid {
+    shift: u32,
+    cols: i32,
+    rows: i32,
+}
+
+impl Grid {
+    /// The cells' range of a screen box (clamped to the grid, so that boxes off
+    /// the frame meet in its border cells).
+    fn range(&self, lo: (i32, i32), hi: (i32, i32)) -> (i32, i32, i32, i32) {
+        let cell = |v: i32, n: i32| (v >> self.shift).clamp(0, n - 1);
+        (
+            cell(lo.0, self.cols),
+            cell(hi.0, self.cols),
+            cell(lo.1, self.rows),
+            cell(hi.1, self.rows),
+        )
+    }
+
+    /// Bins the first `n` contours of `lists` by their boxes.
+    pub(super) fn build(
+        scene: &Scene<'_, '_>,
+        lists: &mut SegmentLists<'_>,
+        n: usize,
+    ) -> Result<Self, Error> {
+        let (w, h) = (i32::from(scene.width), i32::from(scene.height));
+        let mut px = 5;
+        while ((w + (1 << px) - 1) >> px) * ((h + (1 << px) - 1) >> px) > MAX_GRID_CELLS as i32 {
+            px += 1;
+        }
+        let grid = Grid {
+            shift: px + scene.s,
+            cols: ((w + (1 << px) - 1) >> px).max(1),
+            rows: ((h + (1 << px) - 1) >> px).max(1),
+        };
+        let cells = (grid.cols * grid.rows) as usize;
+        let starts = lists.cells.get_mut(..=cells).unwrap_or_default();
+        starts.fill(0);
+        let contours = lists.contours.get(..n).unwrap_or_default();
+        let boxes = |c: &Contour| {
+            let (p, q) = (scene.p(c.a), scene.p(c.b));
+            grid.range((p.x.min(q.x), p.y.min(q.y)), (p.x.max(q.x), p.y.max(q.y)))
+        };
+        for c in contours {
+            let (x0, x1, y0, y1) = boxes(c);
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    if let Some(s) = starts.get_mut((y * grid.cols + x) as usize + 1) {
+                        *s += 1;
+                    }
+                }
+            }
+        }
+        let mut total = 0usize;
+        for s in starts.iter_mut() {
+            total += usize::from(*s);
+            *s = total as u16;
+        }
+        crate::error::need(Capacity::GridEntries, total, lists.entries.len())?;
+        if total > usize::from(u16::MAX) {
+            return Err(Error::CapacityExceeded {
+                what: Capacity::GridEntries,
+                needed: total,
+                capacity: usize::from(u16::MAX),
+            });
+        }
+        for (i, c) in contours.iter().enumerate().rev() {
+            let (x0, x1, y0, y1) = boxes(c);
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    if let Some(s) = starts.get_mut((y * grid.cols + x) as usize + 1) {
+                        *s -= 1;
+                        if let Some(slot) = lists.entries.get_mut(usize::from(*s)) {
+                            *slot = i as u16;
+                        }
+                    }
+                }
+            }
+        }
+        for i in 0..cells {
+            let next = starts.get(i + 1).copied().unwrap_or(0);
+            if let Some(s) = starts.get_mut(i) {
+                *s = next;
+            }
+        }
+        if let Some(s) = starts.get_mut(cells) {
+            *s = total as u16;
+        }
+        Ok(grid)
+    }
+}
+
+/// One drawn edge's crossing test: its ends, its major axis, its faces that do
+/// not hide it.
+struct Line<'o> {
+    a: Pt,
+    b: Pt,
+    lo: (i32, i32),
+    hi: (i32, i32),
+    x_major: bool,
+    own: &'o [u16],
+}
+
+impl Line<'_> {
+    /// The crossing with contour `c` when the contour is nearer there and the
+    /// count changes: its place and the change.
+    #[inline(always)]
+    fn cross(
+        &self,
+        scene: &Scene<'_, '_>,
+        c: &Contour,
+        stats: &mut SegmentStats,
+    ) -> Option<Crossing> {
+        let (a, b) = (self.a, self.b);
+        if c.a == a.id || c.a == b.id || c.b == a.id || c.b == b.id {
+            return None;
+        }
+        let (p, q) = (scene.p(c.a), scene.p(c.b));
+        if p.x.max(q.x) < self.lo.0
+            || p.x.min(q.x) > self.hi.0
+            || p.y.max(q.y) < self.lo.1
+            || p.y.min(q.y) > self.hi.1
+        {
+            return None;
+        }
+        stats.pair_tests += 1;
+        let (o1, o2) = (orient(p, q, a), orient(p, q, b));
+        let s2 = side_with(o2, p, q, b);
+        if side_with(o1, p, q, a) == s2 {
+            return None;
+        }
+        let (o3, o4) = (orient(a, b, p), orient(a, b, q));
+        if side_with(o3, a, b, p) == side_with(o4, a, b, q) {
+            return None;
+        }
+        stats.crossings += 1;
+        if segment_minus(a, b, p, q, o1, o2, o3, o4) >= 0 {
+            return None;
+        }
+        stats.nearer += 1;
+        let mut plus = 0i16;
+        for (f, s) in c.faces.iter().zip(c.sides).take(usize::from(c.count)) {
+            if !self.own.contains(f) {
+                plus += i16::from(s);
+            }
+        }
+        if plus == 0 {
+            return None;
+        }
+        Some(Crossing {
+            place: self.place(o1, o2),
+            delta: if s2 > 0 { plus } else { -plus },
+        })
+    }
+
+    /// Where `a + (b - a) o1 / (o1 - o2)` lies along the major axis, in
+    /// `2^-(S+1+PLACE_BITS)` px (rounded in `f32`: it only places a pixel).
+    fn place(&self, o1: i64, o2: i64) -> i32 {
+        let (ua, ub) = if self.x_major {
+            (self.a.x, self.b.x)
+        } else {
+            (self.a.y, self.b.y)
+        };
+        let span = (o1 - o2).unsigned_abs();
+        let shift = (64 - span.leading_zeros()).saturating_sub(24);
+        let (n, d) = (o1 >> shift, (o1 >> shift) - (o2 >> shift));
+        let t = if d == 0 {
+            0.0
+        } else {
+            (n as f32 / d as f32).clamp(0.0, 1.0)
+        };
+        let scale = 1 << (1 + PLACE_BITS);
+        ua * scale + to_i32(((ub - ua) * scale) as f32 * t)
+    }
+}
+
+/// Each drawn edge's crossings with nearer contours (from the grid) and with
+/// the plain sides of its own faces' triangles (across which the count changes by
+/// the triangle beyond), sorted along the edge, into `lists.crossings`; each
+/// drawn edge's `first`, `len`, `total` and `a_low` in `runs`.
+pub(super) fn cross_all(
+    scene: &Scene<'_, '_>,
+    lists: &mut SegmentLists<'_>,
+    grid: &Grid,
+    contours: usize,
+    runs: &mut [Run],
+    stats: &mut SegmentStats,
+) -> Result<(), Error> {
+    let stamps = lists.stamps.get_mut(..contours).unwrap_or_default();
+    stamps.fill(0);
+    let mut stamp = 0u16;
+    let mut used = 0usize;
+    let capacity = lists.crossings.len();
+    let mut short = false;
+    let mut pairs = scene.piercings;
+    for (index, (e, run)) in scene.edges.iter().zip(runs.iter_mut()).enumerate() {
+        // The edge's piercing pairs (sorted by edge).
+        let skip = pairs.partition_point(|p| usize::from(p.edge) < index);
+        pairs = pairs.get(skip..).unwrap_or_default();
+        let mine = pairs.partition_point(|p| usize::from(p.edge) == index);
+        let (own_pairs, rest) = pairs.split_at(mine.min(pairs.len()));
+        pairs = rest;
+        if !run.drawn {
+            continue;
+        }
+        if stamp == u16::MAX {
+            stamps.fill(0);
+            stamp = 0;
+        }
+        stamp += 1;
+        let own = not_hiding(scene, e)?;
+        let (a, b) = (scene.p(e.a), scene.p(e.b));
+        let line = Line {
+            a,
+            b,
+            lo: (a.x.min(b.x), a.y.min(b.y)),
+            hi: (a.x.max(b.x), a.y.max(b.y)),
+            x_major: (b.x - a.x).abs() >= (b.y - a.y).abs(),
+            own: &own,
+        };
+        let first = used;
+        let mut add = |c: Crossing, used: &mut usize| {
+            if let Some(slot) = lists.crossings.get_mut(*used) {
+                *slot = c;
+            } else {
+                short = true;
+            }
+            *used += 1;
+        };
+        let (x0, x1, y0, y1) = grid.range(line.lo, line.hi);
+        #[cfg(feature = "std")]
+        if std::env::var("SEG_EDGE")
+            .ok()
+            .and_then(|v| v.parse::<usize>().ok())
+            == Some(index)
+        {
+            let m = edge_between(scene.edges, 251, 261);
+            std::eprintln!(
+                "  edge 251-261: {m:?} record {:?} drawn 236 {} 238 {} cull {}",
+                m.map(|m| side_record(scene, 251, 261, &m.faces)),
+                scene.drawn(236),
+                scene.drawn(238),
+                scene.cull
+            );
+            for c in lists.contours.get(..contours).unwrap_or_default() {
+                if [c.a, c.b]
+                    .iter()
+                    .any(|v| [115u16, 251, 261, 249].contains(v))
+                {
+                    let mut st = SegmentStats::default();
+                    std::eprintln!("  contour {c:?}: {:?}", line.cross(scene, c, &mut st));
+                }
+            }
+        }
+        #[cfg(feature = "std")]
+        if std::env::var_os("SEG_NOGRID").is_some() {
+            for c in lists.contours.get(..contours).unwrap_or_default() {
+                if let Some(x) = line.cross(scene, c, stats) {
+                    add(x, &mut used);
+                }
+            }
+        }
+        #[cfg(feature = "std")]
+        let (x0, x1) = if std::env::var_os("SEG_NOGRID").is_some() {
+            (1, 0)
+        } else {
+            (x0, x1)
+        };
+        for y in y0..=y1 {
+            for x in x0..=x1 {
+                let cell = (y * grid.cols + x) as usize;
+                let (s, t) = (
+                    lists.cells.get(cell).copied().unwrap_or(0),
+                    lists.cells.get(cell + 1).copied().unwrap_or(0),
+                );
+                for &i in lists
+                    .entries
+                    .get(usize::from(s)..usize::from(t))
+                    .unwrap_or(&[])
+                {
+                    let Some(mark) = stamps.get_mut(usize::from(i)) else {
+                        continue;
+                    };
+                    if *mark == stamp {
+                        continue;
+                    }
+                    *mark = stamp;
+                    if let Some(c) = lists.contours.get(usize::from(i)) {
+                        if let Some(x) = line.cross(scene, c, stats) {
+                            add(x, &mut used);
+                        }
+                    }
+                }
+            }
+        }
+        // The plain sides of the own faces' triangles away from the edge.
+        for &f in own.iter() {
+            let corners = scene.corners(f);
+            for k in 1..corners.len().saturating_sub(1) {
+                let t = scene.fan(corners, k);
+                for j in 0..3 {
+                    let (u, v) = (t[j].min(t[(j + 1) % 3]), t[j].max(t[(j + 1) % 3]));
+                    if u == v || u == e.a || u == e.b || v == e.a || v == e.b {
+                        continue;
+                    }
+                    let diagonal = j == 2 && k + 2 < corners.len() || j == 0 && k > 1;
+                    let (c, sum) = if diagonal {
+                        side_record(scene, u, v, &[f])
+                    } else {
+                        match edge_between(scene.edges, u, v) {
+                            Some(m) => side_record(scene, u, v, &m.faces),
+                            None => side_record(scene, u, v, &[f]),
+                        }
+                    };
+                    if sum != 0 {
+                        continue;
+                    }
+                    if let Some(x) = line.cross(scene, &c, stats) {
+                        add(x, &mut used);
+                    }
+                }
+            }
+        }
+        for p in own_pairs {
+            if own.contains(&p.face) || !scene.drawn(p.face) {
+                continue;
+            }
+            let t = scene
+                .fan(scene.corners(p.face), usize::from(p.fan))
+                .map(|v| scene.p(v));
+            if let Some(x) = pierce(a, b, t, line.x_major) {
+                stats.piercings += 1;
+                add(x, &mut used);
+            }
+        }
+        if short {
+            continue;
+        }
+        let list = lists.crossings.get_mut(first..used).unwrap_or_default();
+        // Insertion sort: a few crossings an edge.
+        for i in 1..list.len() {
+            let mut j = i;
+            while j > 0 {
+                match (list.get(j - 1), list.get(j)) {
+                    (Some(x), Some(y)) if x.place > y.place => list.swap(j - 1, j),
+                    _ => break,
+                }
+                j -= 1;
+            }
+        }
+        // Changes from the low end up; the total from `a` to `b`.
+        run.a_low = if line.x_major { a.x <= b.x } else { a.y <= b.y };
+        let sum: i16 = list.iter().map(|c| c.delta).sum();
+        if !run.a_low {
+            for c in list.iter_mut() {
+                c.delta = -c.delta;
+            }
+        }
+        run.first = first as u16;
+        run.len = (used - first) as u16;
+        run.total = sum;
+    }
+    if short || used > usize::from(u16::MAX) {
+        return Err(Error::CapacityExceeded {
+            what: Capacity::Crossings,
+            needed: used,
+            capacity: capacity.min(usize::from(u16::MAX)),
+        });
+    }
+    Ok(())
+}
