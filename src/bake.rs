@@ -43,7 +43,7 @@ use crate::obj::{self, ObjError};
 use crate::order::planar_faces;
 use crate::render::{
     BakedMesh, BakedSource, CompactEdge, FacePlane, FastRenderer, FastVertex, FastWorkspace,
-    FrameNeeds,
+    FrameNeeds, Piercing, SegmentSource, VertexFaces,
 };
 use crate::subpixel::U4;
 use crate::{
@@ -277,6 +277,30 @@ pub fn mesh_to_rust_with(
             name,
             planes: &planes,
             edges: &edges,
+        }
+    );
+    let v = mesh.vertices().len();
+    let (mut weld, mut starts, mut around) =
+        (vec![0u16; v], vec![0u16; v + 1], vec![0u16; corners]);
+    let vertex_faces =
+        VertexFaces::bake(mesh, &mut weld, &mut starts, &mut around).map_err(rejected)?;
+    let mut pairs = vec![Piercing::default(); edges.len() * 4 + 16];
+    let n = loop {
+        match Piercing::bake(mesh, &edges, &mut pairs) {
+            Ok(n) => break n,
+            Err(Error::CapacityExceeded { needed, .. }) => {
+                pairs.resize(needed, Piercing::default())
+            }
+            Err(e) => return Err(rejected(e)),
+        }
+    };
+    let _ = write!(
+        s,
+        "{}",
+        SegmentSource {
+            name,
+            vertex_faces,
+            piercings: pairs.get(..n).unwrap_or_default(),
         }
     );
     Ok(s)

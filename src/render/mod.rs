@@ -41,10 +41,11 @@ pub use engines::{
     FastWorkspace, FrameNeeds, GreyPalette, GreyShades, OneSegment, PaintOrder, Painter,
     PainterRenderer, Piercing, RayFace, Raycast, RaycastFigures, RaycastRenderer, RaycastSizes,
     RaycastStorage, RowCodes, Run, Scheme, SchemeCoding, SchemeRenderer, ScreenSegments,
-    SegmentLines, SegmentLists, SegmentStats, SegmentWorkspace, Segments, SmallFace, VertexFaces,
-    Visibility, Warnock, WarnockArea, WarnockFace, WarnockRenderer, WarnockSizes, WarnockStorage,
-    ZBuffer, ZBufferRenderer, FAST_MAX_SUBPIXEL_BITS, MAX_CHECKED_FACES, MAX_CORNERS,
-    MAX_FAST_FACES, MAX_GRID_CELLS, MAX_HOLES, MAX_NOT_HIDING, NO_HOLE, PIERCING_MARGIN,
+    SegmentLines, SegmentLists, SegmentSource, SegmentStats, SegmentWorkspace, Segments, SmallFace,
+    VertexFaces, Visibility, Warnock, WarnockArea, WarnockFace, WarnockRenderer, WarnockSizes,
+    WarnockStorage, ZBuffer, ZBufferRenderer, FAST_MAX_SUBPIXEL_BITS, MAX_CHECKED_FACES,
+    MAX_CORNERS, MAX_FAST_FACES, MAX_GRID_CELLS, MAX_HOLES, MAX_NOT_HIDING, NO_HOLE,
+    PIERCING_MARGIN,
 };
 pub use idpass::IdWorkspace;
 pub use pick::{pick, Pick, PickWorkspace, PickedEdge};

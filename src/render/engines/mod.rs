@@ -73,10 +73,10 @@ pub use fast::span_kernel_twin_mismatches;
 pub(crate) use fast::{faces_view, FaceViews, InstanceViews, OneMesh};
 pub use fast::{
     BakedMesh, BakedSource, CompactEdge, Contour, Crossing, DashPhase, FacePlane, FastRenderer,
-    FastVertex, FastWorkspace, FrameNeeds, Piercing, Run, SegmentLines, SegmentLists, SegmentStats,
-    SegmentWorkspace, Segments, VertexFaces, FAST_MAX_SUBPIXEL_BITS, MAX_CHECKED_FACES,
-    MAX_CORNERS, MAX_FAST_FACES, MAX_GRID_CELLS, MAX_HOLES, MAX_NOT_HIDING, NO_HOLE,
-    PIERCING_MARGIN,
+    FastVertex, FastWorkspace, FrameNeeds, Piercing, Run, SegmentLines, SegmentLists,
+    SegmentSource, SegmentStats, SegmentWorkspace, Segments, VertexFaces, FAST_MAX_SUBPIXEL_BITS,
+    MAX_CHECKED_FACES, MAX_CORNERS, MAX_FAST_FACES, MAX_GRID_CELLS, MAX_HOLES, MAX_NOT_HIDING,
+    NO_HOLE, PIERCING_MARGIN,
 };
 pub use painter::{PaintOrder, PainterRenderer};
 pub use raycast::{

@@ -3,7 +3,7 @@
 
 use super::contours::{not_hiding, NotHiding};
 use super::exact::{covers_nearer, orient, plane_minus, side, Pt};
-use super::{fan, fans_at, Crossing, Run, Scene, SegmentStats, SegmentWorkspace};
+use super::{fans_at, Crossing, Run, Scene, SegmentStats, SegmentWorkspace};
 use crate::Error;
 
 /// A vertex whose count is not known yet.

@@ -8,7 +8,7 @@ extern crate std;
 use super::exact::{orient, segment_minus, side_with, Pt};
 use super::piercings::pierce;
 use super::{
-    fan, Contour, Crossing, Run, Scene, SegmentLists, SegmentStats, MAX_GRID_CELLS, MAX_NOT_HIDING,
+    Contour, Crossing, Run, Scene, SegmentLists, SegmentStats, MAX_GRID_CELLS, MAX_NOT_HIDING,
     PLACE_BITS,
 };
 use crate::render::engines::fast::edge::CompactEdge;

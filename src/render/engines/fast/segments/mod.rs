@@ -30,6 +30,7 @@ mod chains;
 mod contours;
 pub(crate) mod exact;
 mod piercings;
+mod source;
 mod vertex_faces;
 
 use crate::bits::bit;
@@ -40,6 +41,7 @@ use super::edge::CompactEdge;
 use super::view::FastVertex;
 use exact::Pt;
 pub use piercings::{Piercing, PIERCING_MARGIN};
+pub use source::SegmentSource;
 pub use vertex_faces::VertexFaces;
 
 /// The most faces that do not hide one drawn edge: its own and those beyond an
