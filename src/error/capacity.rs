@@ -82,6 +82,9 @@ pub enum Capacity {
     /// face collapsed on an outline): fixed at
     /// [`MAX_NOT_HIDING`](crate::render::MAX_NOT_HIDING). At least.
     NotHidingFaces,
+    /// Triangles on one side (an edge's faces' and a fold's): fixed at
+    /// [`MAX_SIDE_TRIANGLES`](crate::render::MAX_SIDE_TRIANGLES). At least.
+    SideTriangles,
     /// Pairs of an edge and a triangle that may meet in 3-D: the piercings
     /// [`Piercing::bake`](crate::render::Piercing::bake) writes. Exact.
     Piercings,
@@ -196,6 +199,7 @@ impl Capacity {
             Self::NotHidingFaces => "faces not hiding a line (MAX_NOT_HIDING)",
             Self::VertexFaces => "faces around vertices (corners)",
             Self::Piercings => "piercing pairs",
+            Self::SideTriangles => "triangles on one side (MAX_SIDE_TRIANGLES)",
             Self::ClippedCorners => "clipped corners (CLIPPED_CORNERS, pool)",
             Self::RowWidth => "row width (W)",
             Self::Rows => "rows (H, list heads)",

@@ -44,8 +44,8 @@ pub use engines::{
     SegmentLines, SegmentLists, SegmentSource, SegmentStats, SegmentWorkspace, Segments, SmallFace,
     VertexFaces, Visibility, Warnock, WarnockArea, WarnockFace, WarnockRenderer, WarnockSizes,
     WarnockStorage, ZBuffer, ZBufferRenderer, FAST_MAX_SUBPIXEL_BITS, MAX_CHECKED_FACES,
-    MAX_CORNERS, MAX_FAST_FACES, MAX_GRID_CELLS, MAX_HOLES, MAX_NOT_HIDING, NO_HOLE,
-    PIERCING_MARGIN,
+    MAX_CORNERS, MAX_FAST_FACES, MAX_GRID_CELLS, MAX_HOLES, MAX_NOT_HIDING, MAX_SIDE_TRIANGLES,
+    NO_HOLE, PIERCING_MARGIN,
 };
 pub use idpass::IdWorkspace;
 pub use pick::{pick, Pick, PickWorkspace, PickedEdge};

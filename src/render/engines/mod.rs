@@ -76,7 +76,7 @@ pub use fast::{
     FastVertex, FastWorkspace, FrameNeeds, Piercing, Run, SegmentLines, SegmentLists,
     SegmentSource, SegmentStats, SegmentWorkspace, Segments, VertexFaces, FAST_MAX_SUBPIXEL_BITS,
     MAX_CHECKED_FACES, MAX_CORNERS, MAX_FAST_FACES, MAX_GRID_CELLS, MAX_HOLES, MAX_NOT_HIDING,
-    NO_HOLE, PIERCING_MARGIN,
+    MAX_SIDE_TRIANGLES, NO_HOLE, PIERCING_MARGIN,
 };
 pub use painter::{PaintOrder, PainterRenderer};
 pub use raycast::{

@@ -83,7 +83,8 @@ pub use holes::MAX_CHECKED_FACES;
 pub use needs::FrameNeeds;
 pub use segments::{
     Contour, Crossing, Piercing, Run, SegmentLines, SegmentLists, SegmentSource, SegmentStats,
-    SegmentWorkspace, Segments, VertexFaces, MAX_GRID_CELLS, MAX_NOT_HIDING, PIERCING_MARGIN,
+    SegmentWorkspace, Segments, VertexFaces, MAX_GRID_CELLS, MAX_NOT_HIDING, MAX_SIDE_TRIANGLES,
+    PIERCING_MARGIN,
 };
 pub use view::FastVertex;
 pub(crate) use views::{FaceViews, InstanceViews, OneMesh};

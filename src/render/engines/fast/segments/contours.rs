@@ -9,7 +9,7 @@ use super::exact::{orient, segment_minus, side_with, Pt};
 use super::piercings::pierce;
 use super::{
     Contour, Crossing, Run, Scene, SegmentLists, SegmentStats, MAX_GRID_CELLS, MAX_NOT_HIDING,
-    PLACE_BITS,
+    MAX_SIDE_TRIANGLES, PLACE_BITS,
 };
 use crate::render::engines::fast::edge::CompactEdge;
 use crate::render::engines::fast::float_int::to_i32;
@@ -18,9 +18,48 @@ use crate::{Capacity, Error};
 /// The faces that do not hide one drawn edge.
 pub(super) type NotHiding = Vec<u16, MAX_NOT_HIDING>;
 
+/// The faces on an edge: two (or one) from the edge list, every one of a
+/// non-manifold edge from the faces around its end.
+pub(super) fn edge_faces(scene: &Scene<'_, '_>, e: &CompactEdge) -> Result<NotHiding, Error> {
+    let mut out = NotHiding::new();
+    let full = |needed| Error::CapacityExceeded {
+        what: Capacity::NotHidingFaces,
+        needed,
+        capacity: MAX_NOT_HIDING,
+    };
+    if e.kind != crate::mesh::EdgeKind::NonManifold {
+        let [f, g] = e.faces;
+        out.push(f).map_err(|_| full(1))?;
+        if g != f {
+            out.push(g).map_err(|_| full(2))?;
+        }
+        return Ok(out);
+    }
+    for &f in scene.around.around(e.a) {
+        if out.contains(&f) {
+            continue;
+        }
+        let c = scene.corners(f);
+        let has = (0..c.len()).any(|i| {
+            let (p, q) = (scene.corner(c, i), scene.corner(c, (i + 1) % c.len()));
+            (p.min(q), p.max(q)) == (e.a, e.b)
+        });
+        if has {
+            let needed = out.len() + 1;
+            out.push(f).map_err(|_| full(needed))?;
+        }
+    }
+    Ok(out)
+}
+
 /// The drawn triangles of `faces` on side `p`-`q` (`p < q`) and the side of it
 /// each lies on: a contour when they do not cancel.
-fn side_record(scene: &Scene<'_, '_>, p: u16, q: u16, faces: &[u16]) -> (Contour, i32) {
+fn side_record(
+    scene: &Scene<'_, '_>,
+    p: u16,
+    q: u16,
+    faces: &[u16],
+) -> Result<(Contour, i32), Error> {
     let (pp, pq) = (scene.p(p), scene.p(q));
     let mut c = Contour {
         a: p,
@@ -45,18 +84,23 @@ fn side_record(scene: &Scene<'_, '_>, p: u16, q: u16, faces: &[u16]) -> (Contour
                     continue;
                 }
                 sum += i32::from(s);
-                if let (Some(fs), Some(ss)) = (
+                let (Some(fs), Some(ss)) = (
                     c.faces.get_mut(usize::from(c.count)),
                     c.sides.get_mut(usize::from(c.count)),
-                ) {
-                    *fs = f;
-                    *ss = s;
-                    c.count += 1;
-                }
+                ) else {
+                    return Err(Error::CapacityExceeded {
+                        what: Capacity::SideTriangles,
+                        needed: usize::from(c.count) + 1,
+                        capacity: MAX_SIDE_TRIANGLES,
+                    });
+                };
+                *fs = f;
+                *ss = s;
+                c.count += 1;
             }
         }
     }
-    (c, sum)
+    Ok((c, sum))
 }
 
 /// The edge `p`-`q` (`p < q`) of the mesh's edge list.
@@ -92,7 +136,7 @@ pub(super) fn find(scene: &Scene<'_, '_>, out: &mut [Contour]) -> Result<Option<
     };
     let mut short = None;
     for e in scene.edges {
-        let (c, sum) = side_record(scene, e.a, e.b, &e.faces);
+        let (c, sum) = side_record(scene, e.a, e.b, &edge_faces(scene, e)?)?;
         if sum != 0 {
             match push(c, &mut n) {
                 Ok(true) => {}
@@ -109,7 +153,7 @@ pub(super) fn find(scene: &Scene<'_, '_>, out: &mut [Contour]) -> Result<Option<
         for i in 2..corners.len().saturating_sub(1) {
             let t = scene.fan(corners, i);
             let (p, q) = (t[0].min(t[1]), t[0].max(t[1]));
-            let (c, sum) = side_record(scene, p, q, &[f]);
+            let (c, sum) = side_record(scene, p, q, &[f])?;
             if sum != 0 {
                 match push(c, &mut n) {
                     Ok(true) => {}
@@ -138,18 +182,17 @@ pub(super) fn find(scene: &Scene<'_, '_>, out: &mut [Contour]) -> Result<Option<
 /// of the edge (the conventions' "Where snapping moves a face's side across an
 /// outline").
 pub(super) fn not_hiding(scene: &Scene<'_, '_>, e: &CompactEdge) -> Result<NotHiding, Error> {
-    let mut out = NotHiding::new();
+    let mut out = edge_faces(scene, e)?;
     let full = |needed| Error::CapacityExceeded {
         what: Capacity::NotHidingFaces,
         needed,
         capacity: MAX_NOT_HIDING,
     };
-    let [f, g] = e.faces;
-    out.push(f).map_err(|_| full(1))?;
-    if g != f {
-        out.push(g).map_err(|_| full(2))?;
-    }
-    let outline = g == f || scene.facing(f) != scene.facing(g);
+    let outline = match out.as_slice() {
+        [_] => true,
+        [f, g] => scene.facing(*f) != scene.facing(*g),
+        _ => false,
+    };
     if !outline {
         return Ok(out);
     }
@@ -169,7 +212,7 @@ pub(super) fn not_hiding(scene: &Scene<'_, '_>, e: &CompactEdge) -> Result<NotHi
                 continue;
             }
             if let Some(beyond) = edge_between(scene.edges, p, q) {
-                for h in beyond.faces {
+                for h in edge_faces(scene, beyond)? {
                     if !out.contains(&h) {
                         let needed = out.len() + 1;
                         out.push(h).map_err(|_| full(needed))?;
@@ -422,7 +465,7 @@ pub(super) fn cross_all(
             let m = edge_between(scene.edges, 251, 261);
             std::eprintln!(
                 "  edge 251-261: {m:?} record {:?} drawn 236 {} 238 {} cull {}",
-                m.map(|m| side_record(scene, 251, 261, &m.faces)),
+                m.map(|m| side_record(scene, 251, 261, &m.faces).ok()),
                 scene.drawn(236),
                 scene.drawn(238),
                 scene.cull
@@ -490,11 +533,11 @@ pub(super) fn cross_all(
                     }
                     let diagonal = j == 2 && k + 2 < corners.len() || j == 0 && k > 1;
                     let (c, sum) = if diagonal {
-                        side_record(scene, u, v, &[f])
+                        side_record(scene, u, v, &[f])?
                     } else {
                         match edge_between(scene.edges, u, v) {
-                            Some(m) => side_record(scene, u, v, &m.faces),
-                            None => side_record(scene, u, v, &[f]),
+                            Some(m) => side_record(scene, u, v, &edge_faces(scene, m)?)?,
+                            None => side_record(scene, u, v, &[f])?,
                         }
                     };
                     if sum != 0 {

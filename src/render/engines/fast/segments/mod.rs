@@ -48,6 +48,10 @@ pub use vertex_faces::VertexFaces;
 /// own face collapsed on screen across an outline.
 pub const MAX_NOT_HIDING: usize = 8;
 
+/// The most triangles on one side (a non-manifold edge's faces and a folded
+/// face's two).
+pub const MAX_SIDE_TRIANGLES: usize = 4;
+
 /// The most cells of the contour grid (cells of `2^g` pixels, `g` the least from
 /// 5 up that fits).
 pub const MAX_GRID_CELLS: usize = 256;
@@ -63,8 +67,8 @@ pub(crate) const PLACE_BITS: u32 = 4;
 pub struct Contour {
     a: u16,
     b: u16,
-    faces: [u16; 2],
-    sides: [i8; 2],
+    faces: [u16; MAX_SIDE_TRIANGLES],
+    sides: [i8; MAX_SIDE_TRIANGLES],
     count: u8,
 }
 
@@ -170,8 +174,8 @@ impl<const CONTOURS: usize, const CROSSINGS: usize, const CELL_ENTRIES: usize>
             contours: [Contour {
                 a: 0,
                 b: 0,
-                faces: [0; 2],
-                sides: [0; 2],
+                faces: [0; MAX_SIDE_TRIANGLES],
+                sides: [0; MAX_SIDE_TRIANGLES],
                 count: 0,
             }; CONTOURS],
             stamps: [0; CONTOURS],
