@@ -282,8 +282,9 @@ pub fn mesh_to_rust_with(
     let v = mesh.vertices().len();
     let (mut weld, mut starts, mut around) =
         (vec![0u16; v], vec![0u16; v + 1], vec![0u16; corners]);
-    let vertex_faces =
-        VertexFaces::bake(mesh, &mut weld, &mut starts, &mut around).map_err(rejected)?;
+    let mut irregular = vec![0u32; v.div_ceil(32)];
+    let vertex_faces = VertexFaces::bake(mesh, &mut weld, &mut starts, &mut around, &mut irregular)
+        .map_err(rejected)?;
     let mut pairs = vec![Piercing::default(); edges.len() * 4 + 16];
     let n = loop {
         match Piercing::bake(mesh, &edges, &mut pairs) {

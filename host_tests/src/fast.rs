@@ -99,6 +99,7 @@ pub struct SegmentBuffers {
     pub queue: Vec<u16>,
     pub starts: Vec<u16>,
     pub at: Vec<u16>,
+    pub marks: Vec<u32>,
 }
 
 impl SegmentBuffers {
@@ -117,6 +118,7 @@ impl SegmentBuffers {
             queue: vec![0; vertices],
             starts: vec![0; vertices + 1],
             at: vec![0; 2 * edges],
+            marks: vec![0; vertices.div_ceil(32)],
         }
     }
 
@@ -136,6 +138,7 @@ impl SegmentBuffers {
                 queue: &mut self.queue,
                 starts: &mut self.starts,
                 at: &mut self.at,
+                marks: &mut self.marks,
             },
         }
     }
@@ -205,8 +208,15 @@ pub(crate) fn render_fast<Frac: LeEqU32>(
     let mut weld = vec![0u16; scene.mesh.vertices().len()];
     let mut starts = vec![0u16; scene.mesh.vertices().len() + 1];
     let mut around = vec![0u16; scene.mesh.indices().len()];
-    let faces_around = VertexFaces::bake(&scene.mesh, &mut weld, &mut starts, &mut around)
-        .map_err(|e| format!("vertex faces: {e}"))?;
+    let mut irregular = vec![0u32; scene.mesh.vertices().len().div_ceil(32)];
+    let faces_around = VertexFaces::bake(
+        &scene.mesh,
+        &mut weld,
+        &mut starts,
+        &mut around,
+        &mut irregular,
+    )
+    .map_err(|e| format!("vertex faces: {e}"))?;
     let mut pairs = vec![Piercing::default(); 1 << 16];
     let n = Piercing::bake(&scene.mesh, &baked.edges, &mut pairs)
         .map_err(|e| format!("piercings: {e}"))?;

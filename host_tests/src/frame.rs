@@ -180,7 +180,7 @@ impl Default for RenderSpec {
             band: 240,
             pattern: "paper".into(),
             dashes: pbuffer::Dashes::Screen,
-            lines: pbuffer::render::LineVisibility::BySegment,
+            lines: pbuffer::render::LineVisibility::ByPixel,
         }
     }
 }

@@ -359,7 +359,7 @@ pub(crate) const DEFAULT_SETTINGS: Settings = Settings {
     cull: crate::Cull::Auto,
     pattern: crate::Pattern::PAPER,
     dashes: crate::render::Dashes::Screen,
-    lines: crate::render::LineVisibility::BySegment,
+    lines: crate::render::LineVisibility::ByPixel,
 };
 
 /// Lines on.

@@ -113,10 +113,12 @@ pub enum LineVisibility {
     /// ([`SegmentLines`]). Needs the mesh's [`VertexFaces`] and the lent
     /// [`FastWorkspace::segments`]; without them, and in a frame with a line or
     /// contour end outside the guard box or near..far, the per-pixel test draws.
-    #[default]
     BySegment,
-    /// By the pixel: every face is filled into a row depth buffer and each line
-    /// pixel is tested against it. The other engines always test by the pixel.
+    /// By the pixel (the default while the segment test is slower on the
+    /// Cortex-M4, `BENCHMARKS.md`): every face is filled into a row depth buffer
+    /// and each line pixel is tested against it. The other engines always test by
+    /// the pixel.
+    #[default]
     ByPixel,
 }
 

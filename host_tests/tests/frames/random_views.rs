@@ -426,8 +426,11 @@ fn segment_lines_sweep() {
                 ..spec(EngineSpec::Fast, view, cull)
             };
             let fast = render_frame(&mesh, &view.camera, &per_pixel).unwrap();
-            let seg =
-                render_frame(&mesh, &view.camera, &spec(EngineSpec::Fast, view, cull)).unwrap();
+            let by_segment = RenderSpec {
+                lines: pbuffer::render::LineVisibility::BySegment,
+                ..spec(EngineSpec::Fast, view, cull)
+            };
+            let seg = render_frame(&mesh, &view.camera, &by_segment).unwrap();
             let (proto, counts) =
                 with_segment_lines(|| render_frame(&mesh, &view.camera, &per_pixel).unwrap());
             if !only.is_empty() {

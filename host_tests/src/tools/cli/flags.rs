@@ -139,9 +139,10 @@ pub struct Flags {
     #[arg(long, value_name = "screen|iso|DASH,GAP", value_parser = values::dashes,
           allow_hyphen_values = true, help_heading = RENDERING, verbatim_doc_comment)]
     pub dashes: Option<pbuffer::Dashes>,
-    /// How the fast engine finds hidden lines in the line modes: segment (by
-    /// the segment, no face filled: the default) | pixel (every face filled
-    /// into a row depth buffer, each line pixel tested against it)
+    /// How the fast engine finds hidden lines in the line modes: pixel (every
+    /// face filled into a row depth buffer, each line pixel tested against it:
+    /// the default) | segment (by the segment, at object precision, no face
+    /// filled)
     #[arg(long = "line-test", value_name = "segment|pixel", value_parser = values::line_test,
           help_heading = RENDERING, verbatim_doc_comment)]
     pub line_test: Option<pbuffer::render::LineVisibility>,

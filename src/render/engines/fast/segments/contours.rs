@@ -2,8 +2,6 @@
 //! nearer ones.
 
 use heapless::Vec;
-#[cfg(feature = "std")]
-extern crate std;
 
 use super::exact::{orient, segment_minus, side_with, Pt};
 use super::piercings::pierce;
@@ -11,6 +9,7 @@ use super::{
     Contour, Crossing, Run, Scene, SegmentLists, SegmentStats, MAX_GRID_CELLS, MAX_NOT_HIDING,
     MAX_SIDE_TRIANGLES, PLACE_BITS,
 };
+use crate::bits::set_bit;
 use crate::render::engines::fast::edge::CompactEdge;
 use crate::render::engines::fast::float_int::to_i32;
 use crate::{Capacity, Error};
@@ -72,13 +71,28 @@ fn side_record(
             continue;
         }
         let corners = scene.corners(f);
-        for k in 1..corners.len().saturating_sub(1) {
-            let t = scene.fan(corners, k);
-            for j in 0..3 {
-                let (u, v, r) = (t[j], t[(j + 1) % 3], t[(j + 2) % 3]);
-                if (u.min(v), u.max(v)) != (p, q) || u == v {
-                    continue;
-                }
+        let n = corners.len();
+        let at = |k: usize| scene.corner(corners, k);
+        let is = |u: u16, v: u16| u != v && (u.min(v), u.max(v)) == (p, q);
+        // The third corners of the fan triangles on the side: a polygon side's
+        // one, a diagonal's two (c0-ci, between triangles i - 1 and i).
+        let mut thirds = [None; 2];
+        for i in (0..n).filter(|_| n >= 3) {
+            let (u, v) = (at(i), at((i + 1) % n));
+            if is(u, v) {
+                thirds[0] = Some(if i == 0 {
+                    at(2)
+                } else if i == n - 1 {
+                    at(n - 2)
+                } else {
+                    at(0)
+                });
+            } else if (2..n.saturating_sub(1)).contains(&i) && is(at(0), u) {
+                thirds = [Some(at(i - 1)), Some(at(i + 1))];
+            }
+        }
+        for r in thirds.into_iter().flatten() {
+            {
                 let s = orient(pp, pq, scene.p(r)).signum() as i8;
                 if s == 0 {
                     continue;
@@ -115,12 +129,19 @@ fn edge_between<'e>(edges: &'e [CompactEdge], p: u16, q: u16) -> Option<&'e Comp
 /// Finds the frame's contours into `out`: the mesh's edges and its faces' fan
 /// diagonals whose drawn triangles do not lie one on each side. `None`: a
 /// contour has an end outside.
-pub(super) fn find(scene: &Scene<'_, '_>, out: &mut [Contour]) -> Result<Option<usize>, Error> {
+pub(super) fn find(
+    scene: &Scene<'_, '_>,
+    out: &mut [Contour],
+    marks: &mut [u32],
+) -> Result<Option<usize>, Error> {
     let mut n = 0usize;
-    let mut push = |c: Contour, n: &mut usize| -> Result<bool, Error> {
+    marks.fill(0);
+    let mut push = |c: Contour, n: &mut usize, marks: &mut [u32]| -> Result<bool, Error> {
         if !scene.inside(c.a) || !scene.inside(c.b) {
             return Ok(false);
         }
+        set_bit(marks, usize::from(c.a), true);
+        set_bit(marks, usize::from(c.b), true);
         match out.get_mut(*n) {
             Some(slot) => *slot = c,
             None => {
@@ -138,7 +159,7 @@ pub(super) fn find(scene: &Scene<'_, '_>, out: &mut [Contour]) -> Result<Option<
     for e in scene.edges {
         let (c, sum) = side_record(scene, e.a, e.b, &edge_faces(scene, e)?)?;
         if sum != 0 {
-            match push(c, &mut n) {
+            match push(c, &mut n, marks) {
                 Ok(true) => {}
                 Ok(false) => return Ok(None),
                 Err(err) => {
@@ -155,7 +176,11 @@ pub(super) fn find(scene: &Scene<'_, '_>, out: &mut [Contour]) -> Result<Option<
             let (p, q) = (t[0].min(t[1]), t[0].max(t[1]));
             let (c, sum) = side_record(scene, p, q, &[f])?;
             if sum != 0 {
-                match push(c, &mut n) {
+                // A fold: every corner of the face sees it.
+                for k in 0..corners.len() {
+                    set_bit(marks, usize::from(scene.corner(corners, k)), true);
+                }
+                match push(c, &mut n, marks) {
                     Ok(true) => {}
                     Ok(false) => return Ok(None),
                     Err(err) => {
@@ -252,7 +277,7 @@ impl Grid {
         n: usize,
     ) -> Result<Self, Error> {
         let (w, h) = (i32::from(scene.width), i32::from(scene.height));
-        let mut px = 5;
+        let mut px = 4;
         while ((w + (1 << px) - 1) >> px) * ((h + (1 << px) - 1) >> px) > MAX_GRID_CELLS as i32 {
             px += 1;
         }
@@ -381,6 +406,20 @@ impl Line<'_> {
         })
     }
 
+    /// Do `p`-`q` and the edge cross on screen (the test of [`cross`](Self::cross))?
+    fn meets(&self, p: Pt, q: Pt) -> bool {
+        let (a, b) = (self.a, self.b);
+        if p.x.max(q.x) < self.lo.0
+            || p.x.min(q.x) > self.hi.0
+            || p.y.max(q.y) < self.lo.1
+            || p.y.min(q.y) > self.hi.1
+        {
+            return false;
+        }
+        side_with(orient(p, q, a), p, q, a) != side_with(orient(p, q, b), p, q, b)
+            && side_with(orient(a, b, p), a, b, p) != side_with(orient(a, b, q), a, b, q)
+    }
+
     /// Where `a + (b - a) o1 / (o1 - o2)` lies along the major axis, in
     /// `2^-(S+1+PLACE_BITS)` px (rounded in `f32`: it only places a pixel).
     fn place(&self, o1: i64, o2: i64) -> i32 {
@@ -456,44 +495,6 @@ pub(super) fn cross_all(
             *used += 1;
         };
         let (x0, x1, y0, y1) = grid.range(line.lo, line.hi);
-        #[cfg(feature = "std")]
-        if std::env::var("SEG_EDGE")
-            .ok()
-            .and_then(|v| v.parse::<usize>().ok())
-            == Some(index)
-        {
-            let m = edge_between(scene.edges, 251, 261);
-            std::eprintln!(
-                "  edge 251-261: {m:?} record {:?} drawn 236 {} 238 {} cull {}",
-                m.map(|m| side_record(scene, 251, 261, &m.faces).ok()),
-                scene.drawn(236),
-                scene.drawn(238),
-                scene.cull
-            );
-            for c in lists.contours.get(..contours).unwrap_or_default() {
-                if [c.a, c.b]
-                    .iter()
-                    .any(|v| [115u16, 251, 261, 249].contains(v))
-                {
-                    let mut st = SegmentStats::default();
-                    std::eprintln!("  contour {c:?}: {:?}", line.cross(scene, c, &mut st));
-                }
-            }
-        }
-        #[cfg(feature = "std")]
-        if std::env::var_os("SEG_NOGRID").is_some() {
-            for c in lists.contours.get(..contours).unwrap_or_default() {
-                if let Some(x) = line.cross(scene, c, stats) {
-                    add(x, &mut used);
-                }
-            }
-        }
-        #[cfg(feature = "std")]
-        let (x0, x1) = if std::env::var_os("SEG_NOGRID").is_some() {
-            (1, 0)
-        } else {
-            (x0, x1)
-        };
         for y in y0..=y1 {
             for x in x0..=x1 {
                 let cell = (y * grid.cols + x) as usize;
@@ -529,6 +530,10 @@ pub(super) fn cross_all(
                 for j in 0..3 {
                     let (u, v) = (t[j].min(t[(j + 1) % 3]), t[j].max(t[(j + 1) % 3]));
                     if u == v || u == e.a || u == e.b || v == e.a || v == e.b {
+                        continue;
+                    }
+                    // Most never cross the edge on screen: tested first.
+                    if !line.meets(scene.p(u), scene.p(v)) {
                         continue;
                     }
                     let diagonal = j == 2 && k + 2 < corners.len() || j == 0 && k > 1;

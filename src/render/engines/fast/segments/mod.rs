@@ -53,8 +53,8 @@ pub const MAX_NOT_HIDING: usize = 8;
 pub const MAX_SIDE_TRIANGLES: usize = 4;
 
 /// The most cells of the contour grid (cells of `2^g` pixels, `g` the least from
-/// 5 up that fits).
-pub const MAX_GRID_CELLS: usize = 256;
+/// 4 up that fits).
+pub const MAX_GRID_CELLS: usize = 512;
 
 /// Extra fraction bits of a crossing's place along its edge's major axis (in
 /// `2^-(S+1)` px): [`Run`] boundaries are in `2^-(S+1+PLACE_BITS)` px.
@@ -262,12 +262,13 @@ impl SegmentWorkspace<'_> {
             + size_of_val(self.queue)
             + size_of_val(self.starts)
             + size_of_val(self.at)
+            + size_of_val(self.marks)
     }
 }
 
 /// Storage that grows with the mesh, lent for one frame of hidden lines by the
 /// segment. Sizes: `runs` >= edges; `counts`, `queue` >= vertices; `starts` >=
-/// vertices + 1; `at` >= 2 x edges.
+/// vertices + 1; `at` >= 2 x edges; `marks` >= vertices / 32.
 #[derive(Debug)]
 pub struct SegmentWorkspace<'s> {
     /// Each edge's pieces (read by the line pass).
@@ -280,6 +281,8 @@ pub struct SegmentWorkspace<'s> {
     pub starts: &'s mut [u16],
     /// The drawn edges at each vertex.
     pub at: &'s mut [u16],
+    /// One bit a vertex: a contour or a folded face touches it.
+    pub marks: &'s mut [u32],
 }
 
 /// One frame's mesh on screen, as the stage reads it.
@@ -386,6 +389,7 @@ pub(crate) fn classify(
     crate::error::need(Capacity::Vertices, vertices, ws.queue.len())?;
     crate::error::need(Capacity::Vertices, vertices + 1, ws.starts.len())?;
     crate::error::need(Capacity::Edges, 2 * edges, ws.at.len())?;
+    crate::error::need(Capacity::Vertices, vertices.div_ceil(32), ws.marks.len())?;
     // Drawn edges.
     let mut drawn = 0u32;
     for (e, run) in scene.edges.iter().zip(ws.runs.iter_mut()) {
@@ -401,7 +405,7 @@ pub(crate) fn classify(
         }
     }
     stats.drawn += drawn;
-    let Some(contour_count) = contours::find(scene, lists.contours)? else {
+    let Some(contour_count) = contours::find(scene, lists.contours, ws.marks)? else {
         stats.fallback += 1;
         return Ok(false);
     };
@@ -409,10 +413,6 @@ pub(crate) fn classify(
     let grid = contours::Grid::build(scene, lists, contour_count)?;
     contours::cross_all(scene, lists, &grid, contour_count, ws.runs, stats)?;
     chains::propagate(scene, ws, stats)?;
-    #[cfg(feature = "std")]
-    if std::env::var_os("SEG_DEBUG").is_some() {
-        chains::debug_runs(scene, ws.runs, lists.crossings);
-    }
     chains::pieces(scene, lists.crossings, ws.runs, stats);
     Ok(true)
 }

@@ -59,6 +59,16 @@ impl fmt::Display for SegmentSource<'_> {
         )?;
         writeln!(
             out,
+            "/// The irregular vertices' bits, baked by `VertexFaces::bake`."
+        )?;
+        writeln!(
+            out,
+            "pub static {name}_IRREGULAR: [u32; {}] = {:?};",
+            v.irregular.len(),
+            v.irregular
+        )?;
+        writeln!(
+            out,
             "/// The (edge, triangle) pairs that may meet, baked by `Piercing::bake`."
         )?;
         writeln!(
@@ -82,7 +92,7 @@ impl fmt::Display for SegmentSource<'_> {
             out,
             "pub const {name}_VERTEX_FACES: pbuffer::render::VertexFaces<'static> = \
              pbuffer::render::VertexFaces {{ weld: &{name}_WELD, starts: &{name}_AROUND_STARTS, \
-             faces: &{name}_AROUND_FACES }};"
+             faces: &{name}_AROUND_FACES, irregular: &{name}_IRREGULAR }};"
         )
     }
 }

@@ -18,6 +18,10 @@ pub struct VertexFaces<'a> {
     pub starts: &'a [u16],
     /// The faces, vertex by vertex.
     pub faces: &'a [u16],
+    /// One bit a welded vertex: its faces do not make one fan of sides shared
+    /// in pairs (two sheets meet there, a face has it twice, or it is on the
+    /// mesh's boundary), so hidden lines by the segment look at it closely.
+    pub irregular: &'a [u32],
 }
 
 impl<'a> VertexFaces<'a> {
@@ -26,11 +30,13 @@ impl<'a> VertexFaces<'a> {
         weld: &[],
         starts: &[],
         faces: &[],
+        irregular: &[],
     };
 
     /// Writes the welded ids of `mesh`'s vertices into `weld` (at least the
     /// vertices), the faces around each into `starts` (at least the vertices +
-    /// 1) and `faces` (at least the face corners), and returns them. Too small a
+    /// 1) and `faces` (at least the face corners), the irregular vertices into
+    /// `irregular` (at least vertices / 32 words), and returns them. Too small a
     /// buffer is `CapacityExceeded`; more vertices, faces or corners than 16 bits
     /// name is `TooManyFaces`.
     pub fn bake(
@@ -38,6 +44,7 @@ impl<'a> VertexFaces<'a> {
         weld: &'a mut [u16],
         starts: &'a mut [u16],
         faces: &'a mut [u16],
+        irregular: &'a mut [u32],
     ) -> Result<VertexFaces<'a>, Error> {
         let n = mesh.vertices().len();
         let corners = mesh.indices().len();
@@ -51,6 +58,7 @@ impl<'a> VertexFaces<'a> {
         crate::error::need(Capacity::Vertices, n, weld.len())?;
         crate::error::need(Capacity::VertexFaces, n + 1, starts.len())?;
         crate::error::need(Capacity::VertexFaces, corners, faces.len())?;
+        crate::error::need(Capacity::Vertices, n.div_ceil(32), irregular.len())?;
         let weld = weld.get_mut(..n).unwrap_or_default();
         let starts = starts.get_mut(..=n).unwrap_or_default();
         // Ids sorted by position, then id: each run's first is its lowest.
@@ -107,11 +115,78 @@ impl<'a> VertexFaces<'a> {
             *s = corners as u16;
         }
         let faces = faces.get(..corners).unwrap_or_default();
+        let irregular = irregular.get_mut(..n.div_ceil(32)).unwrap_or_default();
+        irregular.fill(0);
+        let table = VertexFaces {
+            weld,
+            starts,
+            faces,
+            irregular: &[],
+        };
+        for v in 0..n as u16 {
+            if !table.one_fan(mesh, v) {
+                crate::bits::set_bit(irregular, usize::from(v), true);
+            }
+        }
         Ok(VertexFaces {
             weld,
             starts,
             faces,
+            irregular,
         })
+    }
+
+    /// Do the faces around welded vertex `v` make one closed fan: each has `v`
+    /// once, each neighbour is on exactly two of them, and walking from face to
+    /// face across those sides visits them all?
+    fn one_fan(&self, mesh: &Mesh<'_>, v: u16) -> bool {
+        let around = self.around(v);
+        // The neighbours of `v` in face `f`: before and after it.
+        let sides = |f: u16| -> Option<[u16; 2]> {
+            let c = mesh.face(usize::from(f));
+            let n = c.len();
+            let mut at = c.iter().enumerate().filter(|(_, &x)| self.welded(x) == v);
+            let (k, _) = at.next()?;
+            if at.next().is_some() {
+                return None;
+            }
+            let w = |i: usize| self.welded(c.get(i % n).copied().unwrap_or(0));
+            Some([w(k + n - 1), w(k + 1)])
+        };
+        let Some(&first) = around.first() else {
+            return true;
+        };
+        let count = |u: u16| {
+            around
+                .iter()
+                .filter(|&&g| sides(g).is_some_and(|s| s.contains(&u)))
+                .count()
+        };
+        for &f in around {
+            match sides(f) {
+                Some([p, q]) if p != q && count(p) == 2 && count(q) == 2 => {}
+                _ => return false,
+            }
+        }
+        // Walk across the `after` sides.
+        let (mut f, mut steps) = (first, 0);
+        loop {
+            let Some([_, next]) = sides(f) else {
+                return false;
+            };
+            let Some(&g) = around
+                .iter()
+                .find(|&&g| g != f && sides(g).is_some_and(|s| s.contains(&next)))
+            else {
+                return false;
+            };
+            steps += 1;
+            f = g;
+            if f == first || steps > around.len() {
+                break;
+            }
+        }
+        f == first && steps == around.len()
     }
 
     /// The faces around welded vertex `v`.
@@ -125,6 +200,12 @@ impl<'a> VertexFaces<'a> {
                 .unwrap_or(&[]),
             _ => &[],
         }
+    }
+
+    /// Is welded vertex `v` irregular?
+    #[inline(always)]
+    pub fn is_irregular(&self, v: u16) -> bool {
+        crate::bits::bit(self.irregular, usize::from(v))
     }
 
     /// Vertex `v`'s welded id.
