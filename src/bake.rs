@@ -290,7 +290,7 @@ pub fn mesh_to_rust_with(
         match Piercing::bake(mesh, &edges, &mut pairs) {
             Ok(n) => break n,
             Err(Error::CapacityExceeded { needed, .. }) => {
-                pairs.resize(needed, Piercing::default())
+                pairs.resize(needed, Piercing::default());
             }
             Err(e) => return Err(rejected(e)),
         }

@@ -106,6 +106,7 @@ fn render(
         cull: Cull::Auto,
         pattern: Pattern::PAPER,
         dashes: Dashes::Screen,
+        lines: LineVisibility::ByPixel,
     };
     let mut renderer = ZBufferRenderer::<U4, 16, 16>::new();
     let stats = renderer

@@ -82,6 +82,7 @@ pub(super) fn frame(
         cull: Cull::Off,
         pattern: Pattern::PAPER,
         dashes: Dashes::Screen,
+        lines: crate::render::LineVisibility::ByPixel,
     };
     let mut vertices = vec![ProjectedVertex::default(); v.len()];
     let (mut drawn, mut features) = (vec![0u32; 1], vec![0u32; 1]);

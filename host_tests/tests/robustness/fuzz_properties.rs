@@ -373,6 +373,7 @@ fn valid_scenes_never_panic_or_write_outside_the_target() {
                 cull: [Cull::On, Cull::Off, Cull::Auto][rng.below(3) as usize],
                 pattern: Pattern::PAPER,
                 dashes: Dashes::Screen,
+                lines: pbuffer::render::LineVisibility::ByPixel,
             },
             w,
             h,

@@ -149,6 +149,7 @@ fn hostile_meshes_and_cameras_never_panic_or_overdraw() {
             cull,
             pattern: Pattern::PAPER,
             dashes: Dashes::Screen,
+            lines: pbuffer::render::LineVisibility::ByPixel,
         };
         let (wu, bu) = (usize::from(w), usize::from(band));
         let mut vertices = vec![ProjectedVertex::default(); arrays.vertices.len()];

@@ -19,6 +19,7 @@ pub(super) struct Lists {
 impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, FACETS, LINES> {
     /// Facing bits, and the per-row lists of drawn faces (when `faces`) and feature
     /// lines.
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn lists<V: FaceViews>(
         &self,
         views: V,

@@ -222,6 +222,7 @@ mod tests {
             cull: Cull::Auto,
             pattern: Pattern::PAPER,
             dashes: Dashes::ISO,
+            lines: crate::render::LineVisibility::ByPixel,
         })
         .unwrap()
     }

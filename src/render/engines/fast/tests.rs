@@ -103,6 +103,7 @@ fn settings(mode: DrawMode) -> Settings {
         cull: Cull::Off,
         pattern: Pattern::PAPER,
         dashes: Dashes::Screen,
+        lines: crate::render::LineVisibility::ByPixel,
     }
 }
 

@@ -142,6 +142,7 @@ fn render_with(
         cull: Cull::Off,
         pattern: Pattern::PAPER,
         dashes: Dashes::Screen,
+        lines: crate::render::LineVisibility::ByPixel,
     };
     let mut target = Blank(Viewport {
         width: w as u16,

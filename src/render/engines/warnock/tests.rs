@@ -54,6 +54,7 @@ fn settings() -> Settings {
         cull: Cull::Off,
         pattern: Pattern::PAPER,
         dashes: Dashes::Screen,
+        lines: crate::render::LineVisibility::ByPixel,
     }
 }
 

@@ -125,6 +125,7 @@ where
         cull: Cull::Off,
         pattern: Pattern::default(),
         dashes: Dashes::Screen,
+        lines: crate::render::LineVisibility::ByPixel,
     };
     let (w, band) = (64usize, 7u16);
     let mut vertices = vec![ProjectedVertex::default(); v.len()];

@@ -61,6 +61,7 @@ fn twisted_quad_and_wall_kept(band: u16, planar: Option<&[u32]>) -> Vec<u16> {
         cull: Cull::Off,
         pattern: Pattern::PAPER,
         dashes: Dashes::Screen,
+        lines: crate::render::LineVisibility::ByPixel,
     };
     let stored = usize::from(storage_rows(band, 32));
     let mut vertices = vec![ProjectedVertex::default(); v.len()];

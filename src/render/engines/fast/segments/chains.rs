@@ -3,7 +3,7 @@
 
 use super::contours::{not_hiding, NotHiding};
 use super::exact::{covers_nearer, orient, plane_minus, side, Pt};
-use super::{fans_at, Crossing, Run, Scene, SegmentStats, SegmentWorkspace};
+use super::{fans_at, turn, Crossing, Run, Scene, SegmentStats, SegmentWorkspace};
 use crate::bits::bit;
 use crate::Error;
 
@@ -71,8 +71,10 @@ impl Scene<'_, '_> {
                 for i in fans_at(n, k) {
                     let t = self.fan(corners, i);
                     let j = t.iter().position(|&c| c == v).unwrap_or(0);
-                    let (pv, pu, pw): (Pt, Pt, Pt) =
-                        (self.p(t[j]), self.p(t[(j + 1) % 3]), self.p(t[(j + 2) % 3]));
+                    let (pv, pu, pw): (Pt, Pt, Pt) = {
+                        let [x, y, z] = turn(t, j);
+                        (self.p(x), self.p(y), self.p(z))
+                    };
                     let area = orient(pv, pu, pw);
                     if area == 0 {
                         continue;

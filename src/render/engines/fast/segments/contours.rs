@@ -6,8 +6,8 @@ use heapless::Vec;
 use super::exact::{orient, segment_minus, side_with, Pt};
 use super::piercings::pierce;
 use super::{
-    Contour, Crossing, Run, Scene, SegmentLists, SegmentStats, MAX_GRID_CELLS, MAX_NOT_HIDING,
-    MAX_SIDE_TRIANGLES, PLACE_BITS,
+    turn, Contour, Crossing, Run, Scene, SegmentLists, SegmentStats, MAX_GRID_CELLS,
+    MAX_NOT_HIDING, MAX_SIDE_TRIANGLES, PLACE_BITS,
 };
 use crate::bits::set_bit;
 use crate::render::engines::fast::edge::CompactEdge;
@@ -118,7 +118,7 @@ fn side_record(
 }
 
 /// The edge `p`-`q` (`p < q`) of the mesh's edge list.
-fn edge_between<'e>(edges: &'e [CompactEdge], p: u16, q: u16) -> Option<&'e CompactEdge> {
+fn edge_between(edges: &[CompactEdge], p: u16, q: u16) -> Option<&CompactEdge> {
     let i = edges.partition_point(|e| (e.a, e.b) < (p, q));
     match edges.get(i) {
         Some(e) if (e.a, e.b) == (p, q) => Some(e),
@@ -528,7 +528,8 @@ pub(super) fn cross_all(
             for k in 1..corners.len().saturating_sub(1) {
                 let t = scene.fan(corners, k);
                 for j in 0..3 {
-                    let (u, v) = (t[j].min(t[(j + 1) % 3]), t[j].max(t[(j + 1) % 3]));
+                    let [x, y, _] = turn(t, j);
+                    let (u, v) = (x.min(y), x.max(y));
                     if u == v || u == e.a || u == e.b || v == e.a || v == e.b {
                         continue;
                     }

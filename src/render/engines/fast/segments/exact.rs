@@ -80,17 +80,18 @@ fn tie(p: Pt, q: Pt, r: Pt) -> i32 {
 /// `i < j < k` their ids in order, the first non-zero of `y_j - y_k`, `x_k - x_j`,
 /// `y_k - y_i`, else -1, times the parity of the order.
 fn perturbed(p: Pt, q: Pt, r: Pt) -> i32 {
-    let mut v = [p, q, r];
+    let (mut i, mut j, mut k) = (p, q, r);
     let mut parity = 1;
-    for a in 0..2 {
-        for b in 0..2 - a {
-            if v[b].id > v[b + 1].id {
-                v.swap(b, b + 1);
-                parity = -parity;
-            }
+    for _ in 0..2 {
+        if i.id > j.id {
+            core::mem::swap(&mut i, &mut j);
+            parity = -parity;
+        }
+        if j.id > k.id {
+            core::mem::swap(&mut j, &mut k);
+            parity = -parity;
         }
     }
-    let [i, j, k] = v;
     let terms = [j.y - k.y, k.x - j.x, k.y - i.y];
     let s = terms.iter().find(|t| **t != 0).map_or(-1, |t| t.signum());
     s * parity

@@ -312,7 +312,9 @@ impl Scene<'_, '_> {
 
     #[inline(always)]
     fn inside(&self, v: u16) -> bool {
-        self.cache.get(usize::from(v)).is_some_and(|p| p.inside())
+        self.cache
+            .get(usize::from(v))
+            .is_some_and(FastVertex::inside)
     }
 
     #[inline(always)]
@@ -361,6 +363,17 @@ impl Scene<'_, '_> {
 pub(crate) fn fan(corners: &[u32], i: usize) -> [u16; 3] {
     let c = |k: usize| corners.get(k).copied().unwrap_or(0) as u16;
     [c(0), c(i), c(i + 1)]
+}
+
+/// Triangle `t` turned to start at its corner `j` (0, 1 or 2).
+#[inline(always)]
+pub(crate) fn turn(t: [u16; 3], j: usize) -> [u16; 3] {
+    let [a, b, c] = t;
+    match j {
+        0 => [a, b, c],
+        1 => [b, c, a],
+        _ => [c, a, b],
+    }
 }
 
 /// The fan triangles (their `i`) of a face with `corners` that have corner `k`.

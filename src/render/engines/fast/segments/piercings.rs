@@ -45,6 +45,16 @@ fn cross(a: V3, b: V3) -> V3 {
     ]
 }
 
+/// Coordinate `i` (0, 1, else 2) of `v`.
+fn axis(v: V3, i: usize) -> f64 {
+    let [x, y, z] = v;
+    match i {
+        0 => x,
+        1 => y,
+        _ => z,
+    }
+}
+
 fn sqrt(x: f64) -> f64 {
     f64::from(crate::camera::sqrt(x as f32))
 }
@@ -68,9 +78,9 @@ impl Piercing {
         };
         let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
         for p in pos {
-            for i in 0..3 {
-                lo[i] = lo[i].min(f64::from(p[i]));
-                hi[i] = hi[i].max(f64::from(p[i]));
+            for ((l, h), &c) in lo.iter_mut().zip(hi.iter_mut()).zip(p) {
+                *l = l.min(f64::from(c));
+                *h = h.max(f64::from(c));
             }
         }
         let d = sub(hi, lo);
@@ -101,8 +111,9 @@ impl Piercing {
                 for k in 1..corners.len().saturating_sub(1) {
                     let t = fan(corners, k).map(|v| at(u32::from(v)));
                     let apart = (0..3).any(|i| {
-                        t.iter().all(|p| p[i] < elo[i] - eps)
-                            || t.iter().all(|p| p[i] > ehi[i] + eps)
+                        let (l, h) = (axis(elo, i), axis(ehi, i));
+                        t.iter().all(|&p| axis(p, i) < l - eps)
+                            || t.iter().all(|&p| axis(p, i) > h + eps)
                     });
                     if apart || !meets(a, b, t, eps) {
                         continue;
@@ -144,8 +155,8 @@ fn meets(a: V3, b: V3, t: [V3; 3], eps: f64) -> bool {
         a[1] + s * (b[1] - a[1]),
         a[2] + s * (b[2] - a[2]),
     ];
-    (0..3).all(|i| {
-        let (p, q) = (t[i], t[(i + 1) % 3]);
+    let [t0, t1, t2] = t;
+    [(t0, t1), (t1, t2), (t2, t0)].into_iter().all(|(p, q)| {
         let e = sub(q, p);
         let side = dot(n, cross(e, sub(x, p))) / len;
         side >= -eps * sqrt(dot(e, e))

@@ -33,12 +33,11 @@ impl<'a> VertexFaces<'a> {
         irregular: &[],
     };
 
-    /// Writes the welded ids of `mesh`'s vertices into `weld` (at least the
-    /// vertices), the faces around each into `starts` (at least the vertices +
-    /// 1) and `faces` (at least the face corners), the irregular vertices into
-    /// `irregular` (at least vertices / 32 words), and returns them. Too small a
-    /// buffer is `CapacityExceeded`; more vertices, faces or corners than 16 bits
-    /// name is `TooManyFaces`.
+    /// Writes the welded ids of `mesh`'s vertices into `weld` (one a vertex),
+    /// the faces around each into `starts` (one more) and `faces` (one a face
+    /// corner), the irregular vertices into `irregular` (a bit a vertex), and
+    /// returns them. Too small a buffer is `CapacityExceeded`; more vertices,
+    /// faces or corners than 16 bits name is `TooManyFaces`.
     pub fn bake(
         mesh: &Mesh<'_>,
         weld: &'a mut [u16],
