@@ -598,7 +598,7 @@ pub(super) fn line_row<const LINES: usize>(
         } else {
             gaps.remove(i, lines.len() - 1);
             // The last line takes its place: swapped, not moved (a move is a call
-            // to `memmove` for the 64 bytes).
+            // to `memmove` for the 72 bytes).
             let n = lines.len();
             if let Some([one, .., last]) = lines.get_mut(i..n) {
                 core::mem::swap(one, last);
