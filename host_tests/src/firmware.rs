@@ -232,7 +232,7 @@ impl Default for ArmDemo {
 /// PNG writer's and the `instrument-window`'s `--demo`).
 #[derive(Debug)]
 pub enum PanelDemo {
-    Instrument(Demo),
+    Instrument(Box<Demo>),
     Arm(Box<ArmDemo>),
 }
 
@@ -240,7 +240,7 @@ impl PanelDemo {
     /// `instrument` or `arm`.
     pub fn named(name: &str) -> Result<Self, String> {
         match name {
-            "instrument" => Ok(Self::Instrument(Demo::new())),
+            "instrument" => Ok(Self::Instrument(Box::default())),
             "arm" => Ok(Self::Arm(Box::default())),
             other => Err(format!("no demo '{other}' (instrument | arm)")),
         }
