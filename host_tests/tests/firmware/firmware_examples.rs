@@ -217,6 +217,7 @@ macro_rules! run_segments {
             );
             let lit = print($name, n, fb.as_bytes());
             assert!(lit > 100, "{} {n}: {lit} pixels", $name);
+            println!("segments {} {n}: {st:?}", $name);
             pierced += st.piercings;
             let kinds = [
                 Capacity::ContourEdges,
