@@ -12,7 +12,11 @@ binary, frames = sys.argv[1], int(sys.argv[2])
 # a function of its inlined call chain, searched from the outermost caller in.
 STAGES = [
     ('outside', r'fnv1a64|paint_stack|stack_peak|^Reset$|__cortex_m_rt_main$|core::fmt'
-                r'|semihosting|BakedMesh>::new|Mesh>::new|with_planar_faces|memcmp'),
+                r'|semihosting|BakedMesh>::new|Mesh>::new|with_planar_faces|memcmp'
+                r'|with_vertex_faces|with_piercings'),
+    # Hidden lines by the segment (the `*-segments` examples): contours, their grid,
+    # crossings, piercings and chains, before the rows are drawn.
+    ('segments', r'>::by_segment$|fast::segments::'),
     # Out of line on the M0 (their callers unknown here): `eye_space` is mostly the
     # vertex transform's, `faces_view` the face lists', `EdgeStep::new` both the
     # facets' and the lines' set-up ('edge steps').
@@ -174,9 +178,11 @@ inside = sum(w for s, w in totals.items() if s != 'outside')
 # `helpers`: of the stage's instructions, those in compiler-builtins' helpers it calls
 # (soft float on the M3 and M0; 64-bit multiply, division and clz on the M0).
 print(f'{"stage":<18} {"a frame":>10} {"share":>6} {"helpers":>9} {"budget":>9} {"x budget":>8}')
-order = ['transform', 'lists', 'edge steps', 'face activation', 'facet rows', 'lines: set-up',
+order = ['transform', 'lists', 'segments', 'edge steps', 'face activation', 'facet rows', 'lines: set-up',
          'lines: pixels', 'rows out', 'clears', 'frame loop']
 for s in order:
+    if s == 'segments' and not totals[s]:
+        continue  # the per-pixel line test: no such stage
     w = totals[s] / frames
     b = BUDGET.get(s)
     ratio = f'{w / b:8.1f}' if b else f'{"":>8}'

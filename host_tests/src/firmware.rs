@@ -6,7 +6,8 @@
 //! `instrument-window` simulator window.
 
 use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
-use pbuffer::render::{BakedMesh, CompactEdge, FacePlane};
+use pbuffer::render::{BakedMesh, CompactEdge, FacePlane, Piercing, VertexFaces};
+use pbuffer::Error;
 
 use crate::image::Look;
 
@@ -17,8 +18,10 @@ use scenes::{panel, PanelFastBuffers, PanelFastEngine};
 
 /// A mesh made ready as `examples/embedded/build.rs` makes the firmware's meshes, at
 /// run time: its edge list (crease angle 30 degrees), which faces are planar, and the
-/// fast engine's constants (`BakedMesh::bake`). The one set-up of every firmware frame
-/// on the host (the demo, `bench --firmware`, the firmware tests).
+/// fast engine's constants (`BakedMesh::bake`), and the tables of hidden lines by the
+/// segment (`VertexFaces::bake`, `Piercing::bake`, as `pbuffer::bake::mesh_to_rust`
+/// writes them). The one set-up of every firmware frame on the host (the demo,
+/// `bench --firmware`, the firmware tests).
 #[derive(Debug, Clone)]
 pub struct Bake {
     vertices: Vec<[f32; 3]>,
@@ -28,6 +31,10 @@ pub struct Bake {
     planar: Vec<u32>,
     planes: Vec<FacePlane>,
     compact: Vec<CompactEdge>,
+    weld: Vec<u16>,
+    around_starts: Vec<u16>,
+    around_faces: Vec<u16>,
+    piercings: Vec<Piercing>,
 }
 
 impl Bake {
@@ -45,6 +52,26 @@ impl Bake {
         let mut compact = vec![CompactEdge::EMPTY; adjacency.edges().len()];
         BakedMesh::bake(&mesh, &adjacency, &mut planes, &mut compact).expect("bakes");
         let edges = adjacency.edges().to_vec();
+        // As the bake does (`pbuffer::bake::mesh_to_rust`): the faces around each
+        // vertex, and the piercing pairs of the compact edge list.
+        let (mut weld16, mut around_starts, mut around_faces) = (
+            vec![0u16; vertices.len()],
+            vec![0u16; vertices.len() + 1],
+            vec![0u16; indices.len()],
+        );
+        VertexFaces::bake(&mesh, &mut weld16, &mut around_starts, &mut around_faces)
+            .expect("the faces around each vertex");
+        let mut piercings = vec![Piercing::default(); compact.len() * 4 + 16];
+        let n = loop {
+            match Piercing::bake(&mesh, &compact, &mut piercings) {
+                Ok(n) => break n,
+                Err(Error::CapacityExceeded { needed, .. }) => {
+                    piercings.resize(needed, Piercing::default())
+                }
+                Err(e) => panic!("the piercing pairs: {e:?}"),
+            }
+        };
+        piercings.truncate(n);
         Self {
             vertices: vertices.to_vec(),
             indices: indices.to_vec(),
@@ -53,6 +80,10 @@ impl Bake {
             planar,
             planes,
             compact,
+            weld: weld16,
+            around_starts,
+            around_faces,
+            piercings,
         }
     }
 
@@ -86,6 +117,30 @@ impl Bake {
     /// The baked mesh, checked by `BakedMesh::new` as the firmware checks it at boot.
     pub fn baked(&self) -> BakedMesh<'_> {
         BakedMesh::new(self.mesh(), &self.planes, &self.compact).expect("the baked mesh")
+    }
+
+    /// The faces around each vertex (`{NAME}_VERTEX_FACES` of the bake).
+    pub fn vertex_faces(&self) -> VertexFaces<'_> {
+        VertexFaces {
+            weld: &self.weld,
+            starts: &self.around_starts,
+            faces: &self.around_faces,
+        }
+    }
+
+    /// The piercing pairs (`{NAME}_PIERCINGS` of the bake).
+    pub fn piercings(&self) -> &[Piercing] {
+        &self.piercings
+    }
+
+    /// The baked mesh with the tables of hidden lines by the segment, as the
+    /// `*-segments` firmware examples check it at boot
+    /// (`.with_vertex_faces(..)`, `.with_piercings(..)`).
+    pub fn baked_segments(&self) -> BakedMesh<'_> {
+        self.baked()
+            .with_vertex_faces(self.vertex_faces())
+            .and_then(|b| b.with_piercings(&self.piercings))
+            .expect("the segment tables")
     }
 }
 
@@ -177,7 +232,7 @@ impl Default for ArmDemo {
 /// PNG writer's and the `instrument-window`'s `--demo`).
 #[derive(Debug)]
 pub enum PanelDemo {
-    Instrument(Demo),
+    Instrument(Box<Demo>),
     Arm(Box<ArmDemo>),
 }
 
@@ -185,7 +240,7 @@ impl PanelDemo {
     /// `instrument` or `arm`.
     pub fn named(name: &str) -> Result<Self, String> {
         match name {
-            "instrument" => Ok(Self::Instrument(Demo::new())),
+            "instrument" => Ok(Self::Instrument(Box::default())),
             "arm" => Ok(Self::Arm(Box::default())),
             other => Err(format!("no demo '{other}' (instrument | arm)")),
         }

@@ -7,7 +7,10 @@ use core::convert::Infallible;
 
 use fixed::types::extra::U4;
 use pbuffer::mesh::{EdgeAdjacency, Mesh};
-use pbuffer::render::{BakedMesh, FastRenderer, FastVertex, FastWorkspace, ProjectedVertex};
+use pbuffer::render::{
+    BakedMesh, FastRenderer, FastVertex, FastWorkspace, ProjectedVertex, Run, SegmentLines,
+    SegmentWorkspace, Segments,
+};
 use pbuffer::{
     Camera, CodeFillRenderer, CodeWorkspace, Cull, Dashes, DrawMode, Error, MonoPalette, Pattern,
     Projection, Settings, SpanSink, Stats,
@@ -275,6 +278,102 @@ impl<
             segments: None,
         }
     }
+
+    /// The workspace the fast engine borrows, with `seg`'s storage for hidden lines
+    /// by the segment (`segments: Some(..)`: the `*-segments` examples).
+    pub fn workspace_with<
+        'a,
+        const SV: usize,
+        const SV1: usize,
+        const SE: usize,
+        const SE2: usize,
+        const CONTOURS: usize,
+        const CROSSINGS: usize,
+        const ENTRIES: usize,
+    >(
+        &'a mut self,
+        seg: &'a mut SegmentBuffers<SV, SV1, SE, SE2, CONTOURS, CROSSINGS, ENTRIES>,
+    ) -> FastWorkspace<'a> {
+        FastWorkspace {
+            segments: Some(seg.segments()),
+            ..self.workspace()
+        }
+    }
+}
+
+/// The lent storage of hidden lines by the segment for one scene: the per-frame
+/// lists (`CONTOURS` contour edges, `CROSSINGS` kept crossings, `ENTRIES` entries
+/// of the contour grid) and the mesh-sized workspace for `V` vertices (`V1` =
+/// `V` + 1) and `E` baked edges (`E2` = 2 x `E`). Zero-initialised, so a `static`
+/// of it is `.bss`.
+#[derive(Debug)]
+pub struct SegmentBuffers<
+    const V: usize,
+    const V1: usize,
+    const E: usize,
+    const E2: usize,
+    const CONTOURS: usize,
+    const CROSSINGS: usize,
+    const ENTRIES: usize,
+> {
+    pub lines: SegmentLines<CONTOURS, CROSSINGS, ENTRIES>,
+    pub runs: [Run; E],
+    pub counts: [i16; V],
+    pub queue: [u16; V],
+    pub starts: [u16; V1],
+    pub at: [u16; E2],
+}
+
+impl<
+        const V: usize,
+        const V1: usize,
+        const E: usize,
+        const E2: usize,
+        const CONTOURS: usize,
+        const CROSSINGS: usize,
+        const ENTRIES: usize,
+    > SegmentBuffers<V, V1, E, E2, CONTOURS, CROSSINGS, ENTRIES>
+{
+    /// All zero.
+    pub const fn new() -> Self {
+        Self {
+            lines: SegmentLines::new(),
+            runs: [Run::EMPTY; E],
+            counts: [0; V],
+            queue: [0; V],
+            starts: [0; V1],
+            at: [0; E2],
+        }
+    }
+
+    /// The storage as a frame borrows it (`FastWorkspace::segments`).
+    pub fn segments(&mut self) -> Segments<'_> {
+        Segments {
+            lists: self.lines.lists(),
+            work: SegmentWorkspace {
+                runs: &mut self.runs,
+                counts: &mut self.counts,
+                queue: &mut self.queue,
+                starts: &mut self.starts,
+                at: &mut self.at,
+            },
+        }
+    }
+}
+
+impl<
+        const V: usize,
+        const V1: usize,
+        const E: usize,
+        const E2: usize,
+        const CONTOURS: usize,
+        const CROSSINGS: usize,
+        const ENTRIES: usize,
+    > Default for SegmentBuffers<V, V1, E, E2, CONTOURS, CROSSINGS, ENTRIES>
+{
+    fn default() -> Self {
+        Self::new()
+    }
 }
 
 /// Suzanne's baked edges (`suzanne::SUZANNE_EDGES.len()`, checked by the host test).
@@ -303,6 +402,46 @@ pub type PanelFastBuffers = FastBuffers<
     { 2 * words(panel::WIDTH) },
     FAST_POOL,
 >;
+
+/// Segment storage for suzanne (507 vertices, her baked edges): room for
+/// [`SUZANNE_CONTOURS`] contours, [`SUZANNE_CROSSINGS`] crossings and
+/// [`SUZANNE_GRID_ENTRIES`] grid entries.
+pub type SuzanneSegmentBuffers = SegmentBuffers<
+    507,
+    508,
+    SUZANNE_EDGES,
+    { 2 * SUZANNE_EDGES },
+    SUZANNE_CONTOURS,
+    SUZANNE_CROSSINGS,
+    SUZANNE_GRID_ENTRIES,
+>;
+/// Contour edges suzanne's segment storage holds (her 8 frames need up to 291).
+pub const SUZANNE_CONTOURS: usize = 512;
+/// Crossings suzanne's segment storage holds (her 8 frames need up to 341).
+pub const SUZANNE_CROSSINGS: usize = 768;
+/// Contour-grid entries suzanne's segment storage holds (her 8 frames need up to
+/// 425).
+pub const SUZANNE_GRID_ENTRIES: usize = 1024;
+
+/// Segment storage for the panel part (24 vertices, its 36 edges): room for
+/// [`PANEL_CONTOURS`] contours, [`PANEL_CROSSINGS`] crossings and
+/// [`PANEL_GRID_ENTRIES`] grid entries.
+pub type PanelSegmentBuffers = SegmentBuffers<
+    24,
+    25,
+    { panel::EDGES },
+    { 2 * panel::EDGES },
+    PANEL_CONTOURS,
+    PANEL_CROSSINGS,
+    PANEL_GRID_ENTRIES,
+>;
+/// Contour edges the panel's segment storage holds (its 4 frames need up to 18).
+pub const PANEL_CONTOURS: usize = 32;
+/// Crossings the panel's segment storage holds (its 4 frames need up to 13).
+pub const PANEL_CROSSINGS: usize = 32;
+/// Contour-grid entries the panel's segment storage holds (its 4 frames need up to
+/// 26).
+pub const PANEL_GRID_ENTRIES: usize = 64;
 
 /// Draws one frame of `baked` seen from `view` into `sink` with the fast engine:
 /// `mode` with culling on for closed meshes and the paper's pattern.

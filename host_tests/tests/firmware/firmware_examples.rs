@@ -17,8 +17,10 @@ use pbuffer_scenes::{obj, painter, plain, scenes};
 
 use host_tests::firmware::{arm, bake_shape, instances, instrument, ArmDemo, Bake, Demo};
 use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
-use pbuffer::render::storage_rows;
-use pbuffer::{packed_len, DrawMode, PackedFramebuffer, Pattern};
+use pbuffer::render::{
+    storage_rows, Contour, Crossing, SegmentLists, Segments, MAX_GRID_CELLS,
+};
+use pbuffer::{packed_len, Capacity, DrawMode, PackedFramebuffer, Pattern};
 use scenes::{fnv1a64, panel, suzanne, View};
 
 /// A scene: its mesh arrays, size and cameras.
@@ -133,6 +135,127 @@ macro_rules! run_scene {
     }};
 }
 
+/// What one frame of hidden lines by the segment needs of the list `what`
+/// (contours, crossings or grid entries): the frame drawn again with no room in
+/// that list and plenty in the others; 0 when it needs none.
+fn segment_need<K, const FACETS: usize, const LINES: usize>(
+    engine: &mut pbuffer::render::FastRenderer<fixed::types::extra::U4, FACETS, LINES>,
+    baked: &pbuffer::render::BakedMesh<'_>,
+    view: &View,
+    mut ws: pbuffer::render::FastWorkspace<'_>,
+    fb: &mut K,
+    what: Capacity,
+) -> usize
+where
+    K: pbuffer::SpanSink<
+        Color = embedded_graphics::pixelcolor::BinaryColor,
+        Error = std::convert::Infallible,
+    >,
+{
+    const PLENTY: usize = 1 << 15;
+    let room = |w: Capacity| if w == what { 0 } else { PLENTY };
+    let mut contours = vec![Contour::default(); room(Capacity::ContourEdges)];
+    let mut stamps = vec![0u16; contours.len()];
+    let mut crossings = vec![Crossing::default(); room(Capacity::Crossings)];
+    let mut cells = vec![0u16; MAX_GRID_CELLS + 1];
+    let mut entries = vec![0u16; room(Capacity::GridEntries)];
+    let lists = SegmentLists::new(
+        &mut contours,
+        &mut stamps,
+        &mut crossings,
+        &mut cells,
+        &mut entries,
+    )
+    .expect("the lists");
+    let work = ws.segments.take().expect("segment storage").work;
+    let mut ws = pbuffer::render::FastWorkspace {
+        segments: Some(Segments { lists, work }),
+        ..ws
+    };
+    match scenes::render_fast(engine, baked, view, DrawMode::Dashed, &mut ws, fb) {
+        Ok(_) => 0,
+        Err(pbuffer::Error::CapacityExceeded { what: w, needed, .. }) if w == what => needed,
+        Err(e) => panic!("{what:?}: {e:?}"),
+    }
+}
+
+/// A fast-engine example drawn with hidden lines by the segment, exactly as its
+/// firmware binary draws it (`Bake::baked_segments`, `FastBuffers::workspace_with`):
+/// prints its frames, checks that every frame took the segment path, and prints the
+/// peak need of each segment list against its capacity.
+macro_rules! run_segments {
+    (
+        $s:expr, $w:expr, $h:expr, $name:expr, $engine:ty, $buffers:ty, $segments:ty,
+        ($contours:expr, $crossings:expr, $entries:expr)
+    ) => {{
+        const N: usize = packed_len($w, $h);
+        let s: &Example = $s;
+        let bake = Bake::new(&s.vertices, &s.indices, &s.offsets);
+        let baked = bake.baked_segments();
+        let mut engine = Box::new(<$engine>::new());
+        let mut b = Box::new(<$buffers>::new());
+        let mut seg = Box::new(<$segments>::new());
+        let mut peaks = [0usize; 3];
+        let mut pierced = 0;
+        for n in 0..s.frames {
+            let mut fb = Box::new(PackedFramebuffer::<{ $w }, { $h }, N>::new());
+            let view = (s.view)(n);
+            let stats = scenes::render_fast(
+                &mut engine,
+                &baked,
+                &view,
+                DrawMode::Dashed,
+                &mut b.workspace_with(&mut seg),
+                &mut *fb,
+            )
+            .expect("renders");
+            let st = stats.segments;
+            assert!(
+                st.drawn > 0 && st.fallback == 0,
+                "{} {n}: not by the segment: {st:?}",
+                $name
+            );
+            let lit = print($name, n, fb.as_bytes());
+            assert!(lit > 100, "{} {n}: {lit} pixels", $name);
+            println!("segments {} {n}: {st:?}", $name);
+            pierced += st.piercings;
+            let kinds = [
+                Capacity::ContourEdges,
+                Capacity::Crossings,
+                Capacity::GridEntries,
+            ];
+            for (peak, what) in peaks.iter_mut().zip(kinds) {
+                let mut probe = Box::new(PackedFramebuffer::<{ $w }, { $h }, N>::new());
+                let need = segment_need(
+                    &mut engine,
+                    &baked,
+                    &view,
+                    b.workspace_with(&mut seg),
+                    &mut *probe,
+                    what,
+                );
+                *peak = need.max(*peak);
+            }
+        }
+        let room = [$contours, $crossings, $entries];
+        println!(
+            "peaks {}: {} / {} contours, {} / {} crossings, {} / {} grid entries, \
+             {} piercing pairs baked, {pierced} pierced in all frames",
+            $name,
+            peaks[0],
+            room[0],
+            peaks[1],
+            room[1],
+            peaks[2],
+            room[2],
+            bake.piercings().len()
+        );
+        for (peak, room) in peaks.iter().zip(room) {
+            assert!(*peak <= room, "{}: {peaks:?} over {room}", $name);
+        }
+    }};
+}
+
 #[test]
 fn firmware_example_frames() {
     // Large buffers: run on a thread with room for them.
@@ -203,6 +326,35 @@ fn firmware_example_frames() {
                 scanline: scenes::PanelEngine,
                 scenes::PanelBuffers,
                 [("panel-scanline", DrawMode::Dashed)]
+            );
+            // Hidden lines by the segment: the same frames with the segment tables.
+            run_segments!(
+                &suz,
+                400,
+                240,
+                "suzanne-segments",
+                scenes::FastEngine,
+                scenes::SuzanneFastBuffers,
+                scenes::SuzanneSegmentBuffers,
+                (
+                    scenes::SUZANNE_CONTOURS,
+                    scenes::SUZANNE_CROSSINGS,
+                    scenes::SUZANNE_GRID_ENTRIES
+                )
+            );
+            run_segments!(
+                &pan,
+                128,
+                64,
+                "panel-segments",
+                scenes::PanelFastEngine,
+                scenes::PanelFastBuffers,
+                scenes::PanelSegmentBuffers,
+                (
+                    scenes::PANEL_CONTOURS,
+                    scenes::PANEL_CROSSINGS,
+                    scenes::PANEL_GRID_ENTRIES
+                )
             );
             // The instrument-panel demo: the bracket in its pane beside the text.
             let mut demo = Demo::new();

@@ -121,6 +121,19 @@ pub struct Run {
     a_low: bool,
 }
 
+impl Run {
+    /// No pieces (not drawn): what a `static` of runs starts as (`.bss`).
+    pub const EMPTY: Self = Self {
+        first: 0,
+        len: 0,
+        hidden: false,
+        drawn: false,
+        start: 0,
+        total: 0,
+        a_low: false,
+    };
+}
+
 /// Counts of one frame of hidden lines by the segment.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
