@@ -34,6 +34,7 @@ pub struct Bake {
     weld: Vec<u16>,
     around_starts: Vec<u16>,
     around_faces: Vec<u16>,
+    irregular: Vec<u32>,
     piercings: Vec<Piercing>,
 }
 
@@ -59,8 +60,15 @@ impl Bake {
             vec![0u16; vertices.len() + 1],
             vec![0u16; indices.len()],
         );
-        VertexFaces::bake(&mesh, &mut weld16, &mut around_starts, &mut around_faces)
-            .expect("the faces around each vertex");
+        let mut irregular = vec![0u32; vertices.len().div_ceil(32)];
+        VertexFaces::bake(
+            &mesh,
+            &mut weld16,
+            &mut around_starts,
+            &mut around_faces,
+            &mut irregular,
+        )
+        .expect("the faces around each vertex");
         let mut piercings = vec![Piercing::default(); compact.len() * 4 + 16];
         let n = loop {
             match Piercing::bake(&mesh, &compact, &mut piercings) {
@@ -83,6 +91,7 @@ impl Bake {
             weld: weld16,
             around_starts,
             around_faces,
+            irregular,
             piercings,
         }
     }
@@ -125,6 +134,7 @@ impl Bake {
             weld: &self.weld,
             starts: &self.around_starts,
             faces: &self.around_faces,
+            irregular: &self.irregular,
         }
     }
 

@@ -285,6 +285,7 @@ impl<
         'a,
         const SV: usize,
         const SV1: usize,
+        const SVW: usize,
         const SE: usize,
         const SE2: usize,
         const CONTOURS: usize,
@@ -292,7 +293,7 @@ impl<
         const ENTRIES: usize,
     >(
         &'a mut self,
-        seg: &'a mut SegmentBuffers<SV, SV1, SE, SE2, CONTOURS, CROSSINGS, ENTRIES>,
+        seg: &'a mut SegmentBuffers<SV, SV1, SVW, SE, SE2, CONTOURS, CROSSINGS, ENTRIES>,
     ) -> FastWorkspace<'a> {
         FastWorkspace {
             segments: Some(seg.segments()),
@@ -304,12 +305,13 @@ impl<
 /// The lent storage of hidden lines by the segment for one scene: the per-frame
 /// lists (`CONTOURS` contour edges, `CROSSINGS` kept crossings, `ENTRIES` entries
 /// of the contour grid) and the mesh-sized workspace for `V` vertices (`V1` =
-/// `V` + 1) and `E` baked edges (`E2` = 2 x `E`). Zero-initialised, so a `static`
+/// `V` + 1, `VW` = ceil(`V` / 32)) and `E` baked edges (`E2` = 2 x `E`). Zero-initialised, so a `static`
 /// of it is `.bss`.
 #[derive(Debug)]
 pub struct SegmentBuffers<
     const V: usize,
     const V1: usize,
+    const VW: usize,
     const E: usize,
     const E2: usize,
     const CONTOURS: usize,
@@ -322,17 +324,19 @@ pub struct SegmentBuffers<
     pub queue: [u16; V],
     pub starts: [u16; V1],
     pub at: [u16; E2],
+    pub marks: [u32; VW],
 }
 
 impl<
         const V: usize,
         const V1: usize,
+        const VW: usize,
         const E: usize,
         const E2: usize,
         const CONTOURS: usize,
         const CROSSINGS: usize,
         const ENTRIES: usize,
-    > SegmentBuffers<V, V1, E, E2, CONTOURS, CROSSINGS, ENTRIES>
+    > SegmentBuffers<V, V1, VW, E, E2, CONTOURS, CROSSINGS, ENTRIES>
 {
     /// All zero.
     pub const fn new() -> Self {
@@ -343,6 +347,7 @@ impl<
             queue: [0; V],
             starts: [0; V1],
             at: [0; E2],
+            marks: [0; VW],
         }
     }
 
@@ -356,6 +361,7 @@ impl<
                 queue: &mut self.queue,
                 starts: &mut self.starts,
                 at: &mut self.at,
+                marks: &mut self.marks,
             },
         }
     }
@@ -364,12 +370,13 @@ impl<
 impl<
         const V: usize,
         const V1: usize,
+        const VW: usize,
         const E: usize,
         const E2: usize,
         const CONTOURS: usize,
         const CROSSINGS: usize,
         const ENTRIES: usize,
-    > Default for SegmentBuffers<V, V1, E, E2, CONTOURS, CROSSINGS, ENTRIES>
+    > Default for SegmentBuffers<V, V1, VW, E, E2, CONTOURS, CROSSINGS, ENTRIES>
 {
     fn default() -> Self {
         Self::new()
@@ -409,6 +416,7 @@ pub type PanelFastBuffers = FastBuffers<
 pub type SuzanneSegmentBuffers = SegmentBuffers<
     507,
     508,
+    { words(507) },
     SUZANNE_EDGES,
     { 2 * SUZANNE_EDGES },
     SUZANNE_CONTOURS,
@@ -429,6 +437,7 @@ pub const SUZANNE_GRID_ENTRIES: usize = 1024;
 pub type PanelSegmentBuffers = SegmentBuffers<
     24,
     25,
+    1,
     { panel::EDGES },
     { 2 * panel::EDGES },
     PANEL_CONTOURS,

@@ -17,9 +17,7 @@ use pbuffer_scenes::{obj, painter, plain, scenes};
 
 use host_tests::firmware::{arm, bake_shape, instances, instrument, ArmDemo, Bake, Demo};
 use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
-use pbuffer::render::{
-    storage_rows, Contour, Crossing, SegmentLists, Segments, MAX_GRID_CELLS,
-};
+use pbuffer::render::{storage_rows, Contour, Crossing, SegmentLists, Segments, MAX_GRID_CELLS};
 use pbuffer::{packed_len, Capacity, DrawMode, PackedFramebuffer, Pattern};
 use scenes::{fnv1a64, panel, suzanne, View};
 
@@ -174,7 +172,9 @@ where
     };
     match scenes::render_fast(engine, baked, view, DrawMode::Dashed, &mut ws, fb) {
         Ok(_) => 0,
-        Err(pbuffer::Error::CapacityExceeded { what: w, needed, .. }) if w == what => needed,
+        Err(pbuffer::Error::CapacityExceeded {
+            what: w, needed, ..
+        }) if w == what => needed,
         Err(e) => panic!("{what:?}: {e:?}"),
     }
 }
