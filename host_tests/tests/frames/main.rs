@@ -1,7 +1,7 @@
 //! 3-D frames against the f64 references: every engine, the fast engine, grey, the whole
 //! pipeline, feature edges, open meshes, faces that are not planar, dashes along edges,
 //! picking, the code schemes, the depth orders (BSP, Newell), the short API, scenes of
-//! posed parts, depth precision and random views.
+//! posed parts, depth precision, random views and hidden lines by the segment.
 //!
 //! One test binary; each module is one suite (`cargo test -p host_tests --test frames
 //! MODULE::`).
@@ -24,4 +24,5 @@ mod pipeline_vs_reference;
 mod random_views;
 mod scene_fit;
 mod scene_union;
+mod segment_lines;
 mod short_api;
