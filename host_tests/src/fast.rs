@@ -259,7 +259,29 @@ pub(crate) fn render_fast<Frac: LeEqU32>(
     } else {
         std::mem::size_of_val(ws.phases) + 4 * w.div_ceil(32)
     };
-    let lent = ws.bytes() - std::mem::size_of_val(ws.pool) - std::mem::size_of_val(ws.ids) - unused;
+    // The segment storage at this frame's need when the segment path drew (its
+    // lists at their peaks, the mesh-sized part whole), else none.
+    let segments = ws
+        .segments
+        .as_ref()
+        .map_or(0, |s| s.lists.bytes() + s.work.bytes());
+    let seg = &stats.segments;
+    let segment_need = match &ws.segments {
+        Some(s) if seg.drawn > 0 => {
+            use std::mem::size_of;
+            s.work.bytes()
+                + seg.contours as usize * (size_of::<Contour>() + size_of::<u16>())
+                + seg.kept as usize * size_of::<Crossing>()
+                + (seg.grid_entries as usize + MAX_GRID_CELLS + 1) * size_of::<u16>()
+        }
+        _ => 0,
+    };
+    let lent = ws.bytes()
+        - std::mem::size_of_val(ws.pool)
+        - std::mem::size_of_val(ws.ids)
+        - unused
+        - segments
+        + segment_need;
     let working = lent
         + FastRenderer::<Frac, FACETS, LINES>::bytes_for(
             stats.peak_faces as usize,

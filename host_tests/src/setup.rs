@@ -574,6 +574,8 @@ fn segment_stats(s: &pbuffer::render::SegmentStats) -> Vec<(String, u64)> {
         ("segment_crossings", s.crossings),
         ("segment_nearer_crossings", s.nearer),
         ("segment_piercings", s.piercings),
+        ("segment_kept_crossings", s.kept),
+        ("segment_grid_entries", s.grid_entries),
         ("segment_boundaries", s.boundaries),
         ("segment_seeds", s.seeds),
         ("segment_reseeds", s.reseeds),

@@ -275,6 +275,7 @@ impl Grid {
         scene: &Scene<'_, '_>,
         lists: &mut SegmentLists<'_>,
         n: usize,
+        stats: &mut SegmentStats,
     ) -> Result<Self, Error> {
         let (w, h) = (i32::from(scene.width), i32::from(scene.height));
         let mut px = 4;
@@ -309,6 +310,7 @@ impl Grid {
             total += usize::from(*s);
             *s = total as u16;
         }
+        stats.grid_entries += total as u32;
         crate::error::need(Capacity::GridEntries, total, lists.entries.len())?;
         if total > usize::from(u16::MAX) {
             return Err(Error::CapacityExceeded {
@@ -594,6 +596,7 @@ pub(super) fn cross_all(
         run.len = (used - first) as u16;
         run.total = sum;
     }
+    stats.kept += used as u32;
     if short || used > usize::from(u16::MAX) {
         return Err(Error::CapacityExceeded {
             what: Capacity::Crossings,

@@ -150,6 +150,10 @@ pub struct SegmentStats {
     pub nearer: u32,
     /// Edges passing through a triangle (kept as crossings).
     pub piercings: u32,
+    /// Crossings kept (the frame's need of `CROSSINGS`).
+    pub kept: u32,
+    /// Entries of the contour grid (the frame's need of `CELL_ENTRIES`).
+    pub grid_entries: u32,
     /// Boundaries between visible and hidden pieces.
     pub boundaries: u32,
     /// Chains seeded by a point test.
@@ -436,7 +440,7 @@ pub(crate) fn classify(
         return Ok(false);
     };
     stats.contours += contour_count as u32;
-    let grid = contours::Grid::build(scene, lists, contour_count)?;
+    let grid = contours::Grid::build(scene, lists, contour_count, stats)?;
     contours::cross_all(scene, lists, &grid, contour_count, ws.runs, stats)?;
     chains::propagate(scene, ws, stats)?;
     chains::pieces(scene, lists.crossings, ws.runs, stats);
