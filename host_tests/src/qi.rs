@@ -1,7 +1,10 @@
 //! A host prototype of hidden lines decided by the segment (quantitative
 //! invisibility, Appel 1967), on the fast engine's snapped vertices: the line
-//! classification the design brief `LINE-VISIBILITY.md` proposes, measured
-//! against the f64 reference before any of it is built for the target.
+//! classification the design brief `LINE-VISIBILITY.md` proposes. The library's
+//! stage (`pbuffer::render::engines::fast::segments`, `LineVisibility::BySegment`)
+//! was ported from it; it stays as the sweep's independent cross-check
+//! (`segment_lines_sweep`), written plainly with maps and every triangle tested.
+//! The predicates' unit tests are the library's.
 //!
 //! Every test is a sign of an integer expression on the vertex cache's snapped
 //! screen positions (`2^-S` px) and nearness (16.16, larger nearer; 24 bits of it
@@ -20,10 +23,9 @@
 //! connected set of drawn edges is seeded once by a point test; where two paths
 //! reach a vertex with different counts the point test decides (a re-seed).
 //!
-//! Not handled (the frame keeps the fast engine's lines, counted as a
-//! fallback): vertices outside near..far or the guard box. Not handled at all:
-//! interpenetration (an edge piercing a face changes its count with no contour
-//! crossing).
+//! Piercings (an edge passing through a triangle) are found by testing every
+//! triangle, in `f64`. Not handled (the frame keeps the fast engine's lines,
+//! counted as a fallback): vertices outside near..far or the guard box.
 
 use std::collections::{HashMap, VecDeque};
 
@@ -875,151 +877,5 @@ fn walk(a: P, b: P, s: u32, width: usize, height: usize, mut pixel: impl FnMut(u
         }
         let t = (c - ua) as f64 / du as f64;
         pixel(x as usize, y as usize, t);
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::random::Rng;
-
-    fn random_point(rng: &mut Rng) -> P {
-        P {
-            x: rng.range(-6400.0, 6400.0) as i64,
-            y: rng.range(-3840.0, 3840.0) as i64,
-            d: rng.range(0.0, 16_777_215.0) as i64,
-            id: NOT_A_VERTEX,
-        }
-    }
-
-    /// The crossing's depth order by orientations agrees with f64 on random
-    /// crossings whose depths differ by more than f64's rounding.
-    #[test]
-    fn the_depth_order_at_a_crossing_agrees_with_f64() {
-        let mut rng = Rng::new(49);
-        let mut tested = 0;
-        while tested < 20_000 {
-            let [a, b, p, q] = [0; 4].map(|_| random_point(&mut rng));
-            let (o1, o2) = (orient(p, q, a), orient(p, q, b));
-            let (o3, o4) = (orient(a, b, p), orient(a, b, q));
-            if o1.signum() * o2.signum() >= 0 || o3.signum() * o4.signum() >= 0 {
-                continue;
-            }
-            let t = o1 as f64 / (o1 - o2) as f64;
-            let s = o3 as f64 / (o3 - o4) as f64;
-            let de = a.d as f64 + t * (b.d - a.d) as f64;
-            let dc = p.d as f64 + s * (q.d - p.d) as f64;
-            if (de - dc).abs() < 1e-3 {
-                continue;
-            }
-            tested += 1;
-            assert_eq!(
-                line_minus_contour(a, b, p, q),
-                if de > dc { 1 } else { -1 },
-                "{a:?}-{b:?} x {p:?}-{q:?}"
-            );
-        }
-    }
-
-    /// The plane test by barycentric orientations agrees with f64 at random
-    /// points, inside the triangle and beyond it.
-    #[test]
-    fn the_plane_test_agrees_with_f64() {
-        let mut rng = Rng::new(50);
-        let mut tested = 0;
-        while tested < 20_000 {
-            let t = [0; 3].map(|_| random_point(&mut rng));
-            let r = random_point(&mut rng);
-            let area = orient(t[0], t[1], t[2]);
-            if area == 0 {
-                continue;
-            }
-            let w = [
-                orient(t[1], t[2], r) as f64 / area as f64,
-                orient(t[2], t[0], r) as f64 / area as f64,
-                orient(t[0], t[1], r) as f64 / area as f64,
-            ];
-            let plane = w[0] * t[0].d as f64 + w[1] * t[1].d as f64 + w[2] * t[2].d as f64;
-            if (plane - r.d as f64).abs() < 1e-3 * (1.0 + plane.abs()) {
-                continue;
-            }
-            tested += 1;
-            let expected = if plane > r.d as f64 { 1 } else { -1 };
-            assert_eq!(nearer_plane(t, area, r), expected, "{t:?} at {r:?}");
-        }
-    }
-
-    /// A point on a line is moved by (+e, +e^2): below a horizontal line
-    /// going right (y grows downward), right of a vertical line going down.
-    #[test]
-    fn a_point_on_a_line_takes_the_side_of_its_nudge() {
-        let p = |x, y| P {
-            x,
-            y,
-            d: 0,
-            id: NOT_A_VERTEX,
-        };
-        // Horizontal, going +x: the nudge is +y, to the left in these axes.
-        assert_eq!(side(p(0, 0), p(10, 0), p(5, 0)), 1);
-        assert_eq!(side(p(10, 0), p(0, 0), p(5, 0)), -1);
-        // Vertical, going +y: the nudge is +x: orient < 0 there.
-        assert_eq!(side(p(0, 0), p(0, 10), p(0, 5)), -1);
-        assert_eq!(side(p(0, 0), p(0, 10), p(1, 5)), -1);
-        assert_eq!(side(p(0, 0), p(10, 0), p(5, 1)), 1);
-    }
-}
-
-#[cfg(test)]
-mod perturbation_tests {
-    use super::*;
-
-    fn v(x: i64, y: i64, id: u32) -> P {
-        P { x, y, d: 0, id }
-    }
-
-    /// The perturbed orientation is antisymmetric and never zero, for three
-    /// vertices on one line and for coincident ones, and agrees with the
-    /// exact one where that is not zero.
-    #[test]
-    fn the_perturbed_side_is_a_consistent_orientation() {
-        let cases = [
-            [v(0, 0, 3), v(10, 0, 1), v(5, 0, 2)],
-            [v(0, 0, 3), v(0, 0, 1), v(5, 5, 2)],
-            [v(2, 2, 0), v(2, 2, 1), v(2, 2, 2)],
-            [v(0, 0, 0), v(4, 4, 5), v(8, 8, 9)],
-            [v(1, 0, 0), v(4, 4, 5), v(8, 8, 9)],
-        ];
-        for [a, b, c] in cases {
-            let s = side(a, b, c);
-            assert_ne!(s, 0);
-            assert_eq!(side(b, a, c), -s, "swap");
-            assert_eq!(side(b, c, a), s, "rotation");
-            assert_eq!(side(a, c, b), -s, "swap");
-            let o = orient(a, b, c);
-            if o != 0 {
-                assert_eq!(s, o.signum());
-            }
-        }
-    }
-
-    /// Four vertices where two coincide: the segment through the coincident
-    /// pair's partners is crossed by exactly one of the two segments that meet
-    /// there, as if the two were apart.
-    #[test]
-    fn coincident_vertices_are_crossed_once_along_a_chain() {
-        // Chain a-m-b passes through m; the contour p-q passes through m's
-        // position at vertex n (another vertex at the same point).
-        let (a, m, b) = (v(0, -10, 0), v(0, 0, 1), v(0, 10, 2));
-        let (p, n, q) = (v(-10, 0, 3), v(0, 0, 4), v(10, 0, 5));
-        let crosses = |e0: P, e1: P, c0: P, c1: P| {
-            side(c0, c1, e0) != side(c0, c1, e1) && side(e0, e1, c0) != side(e0, e1, c1)
-        };
-        // The chain a-m-b against the contour chain p-n-q: one crossing in all.
-        let total: usize = [(a, m), (m, b)]
-            .iter()
-            .flat_map(|e| [(p, n), (n, q)].map(|c| (*e, c)))
-            .filter(|((e0, e1), (c0, c1))| crosses(*e0, *e1, *c0, *c1))
-            .count();
-        assert_eq!(total, 1);
     }
 }
