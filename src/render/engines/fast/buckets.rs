@@ -33,11 +33,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         let mesh = baked.mesh();
         let s = map.s;
         let (width, height) = (i32::from(viewport.width), i32::from(viewport.height));
-        let cull = match settings.cull {
-            Cull::On => true,
-            Cull::Off => false,
-            Cull::Auto => baked.is_closed(),
-        };
+        let cull = culls(settings, baked);
         let h = usize::from(viewport.height);
         let (face_heads, line_heads) = ws.heads.split_at_mut(h);
         face_heads.fill(NONE);

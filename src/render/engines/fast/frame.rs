@@ -291,11 +291,7 @@ impl<Frac: LeEqU32, const FACETS: usize, const LINES: usize> FastRenderer<Frac, 
         let Some(seg) = ws.segments.as_mut() else {
             return Ok(false);
         };
-        let cull = match settings.cull {
-            Cull::On => true,
-            Cull::Off => false,
-            Cull::Auto => baked.is_closed(),
-        };
+        let cull = culls(settings, baked);
         let scene = Scene {
             mesh: baked.mesh(),
             edges: baked.edges(),

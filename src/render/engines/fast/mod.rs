@@ -236,6 +236,15 @@ impl CornerSource for Source<'_, '_> {
     }
 }
 
+/// Are back faces culled in a frame of `baked` with `settings`?
+pub(crate) fn culls(settings: &Settings, baked: &BakedMesh<'_>) -> bool {
+    match settings.cull {
+        Cull::On => true,
+        Cull::Off => false,
+        Cull::Auto => baked.is_closed(),
+    }
+}
+
 /// Does the face with `plane` face `view`? The test of `Mesh::faces_viewpoint`,
 /// on the baked normal and centroid.
 pub(crate) fn faces_view(plane: &FacePlane, view: &Viewpoint) -> bool {

@@ -238,12 +238,7 @@ impl Run {
 /// Turns each drawn edge's crossings into its pieces: the places where its
 /// count turns between 0 (visible) and more (hidden), from its low end, written
 /// over its crossings.
-pub(super) fn pieces(
-    _scene: &Scene<'_, '_>,
-    crossings: &mut [Crossing],
-    runs: &mut [Run],
-    stats: &mut SegmentStats,
-) {
+pub(super) fn pieces(crossings: &mut [Crossing], runs: &mut [Run], stats: &mut SegmentStats) {
     for run in runs.iter_mut().filter(|r| r.drawn) {
         let (first, len) = (usize::from(run.first), usize::from(run.len));
         let list = crossings.get_mut(first..first + len).unwrap_or_default();

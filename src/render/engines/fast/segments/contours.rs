@@ -6,12 +6,11 @@ use heapless::Vec;
 use super::exact::{orient, segment_minus, side_with, Pt};
 use super::piercings::pierce;
 use super::{
-    turn, Contour, Crossing, Run, Scene, SegmentLists, SegmentStats, MAX_GRID_CELLS,
-    MAX_NOT_HIDING, MAX_SIDE_TRIANGLES, PLACE_BITS,
+    place_between, turn, Contour, Crossing, Run, Scene, SegmentLists, SegmentStats, MAX_GRID_CELLS,
+    MAX_NOT_HIDING, MAX_SIDE_TRIANGLES,
 };
 use crate::bits::set_bit;
 use crate::render::engines::fast::edge::CompactEdge;
-use crate::render::engines::fast::float_int::to_i32;
 use crate::{Capacity, Error};
 
 /// The faces that do not hide one drawn edge.
@@ -430,16 +429,7 @@ impl Line<'_> {
         } else {
             (self.a.y, self.b.y)
         };
-        let span = (o1 - o2).unsigned_abs();
-        let shift = (64 - span.leading_zeros()).saturating_sub(24);
-        let (n, d) = (o1 >> shift, (o1 >> shift) - (o2 >> shift));
-        let t = if d == 0 {
-            0.0
-        } else {
-            (n as f32 / d as f32).clamp(0.0, 1.0)
-        };
-        let scale = 1 << (1 + PLACE_BITS);
-        ua * scale + to_i32(((ub - ua) * scale) as f32 * t)
+        place_between(ua, ub, o1, o2)
     }
 }
 

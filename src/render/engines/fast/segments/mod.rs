@@ -382,6 +382,23 @@ pub(crate) fn fan(corners: &[u32], i: usize) -> [u16; 3] {
     [c(0), c(i), c(i + 1)]
 }
 
+/// Where the point `num / (num - other)` of the way from `ua` to `ub` (major-axis
+/// coordinates, `2^-S` px) lies, in `2^-(S+1+PLACE_BITS)` px: the two are
+/// shifted to 24 bits and divided in `f32`, since the place only puts a pixel.
+#[inline(always)]
+pub(crate) fn place_between(ua: i32, ub: i32, num: i64, other: i64) -> i32 {
+    let span = (num - other).unsigned_abs();
+    let shift = (64 - span.leading_zeros()).saturating_sub(24);
+    let (n, d) = (num >> shift, (num >> shift) - (other >> shift));
+    let t = if d == 0 {
+        0.0
+    } else {
+        (n as f32 / d as f32).clamp(0.0, 1.0)
+    };
+    let scale = 1 << (1 + PLACE_BITS);
+    ua * scale + super::float_int::to_i32(((ub - ua) * scale) as f32 * t)
+}
+
 /// Triangle `t` turned to start at its corner `j` (0, 1 or 2).
 #[inline(always)]
 pub(crate) fn turn(t: [u16; 3], j: usize) -> [u16; 3] {
@@ -443,6 +460,6 @@ pub(crate) fn classify(
     let grid = contours::Grid::build(scene, lists, contour_count, stats)?;
     contours::cross_all(scene, lists, &grid, contour_count, ws.runs, stats)?;
     chains::propagate(scene, ws, stats)?;
-    chains::pieces(scene, lists.crossings, ws.runs, stats);
+    chains::pieces(lists.crossings, ws.runs, stats);
     Ok(true)
 }

@@ -5,10 +5,9 @@
 //! decides them exactly on the snapped points.
 
 use super::exact::{orient, Pt};
-use super::{fan, Crossing, PLACE_BITS};
+use super::{fan, place_between, Crossing};
 use crate::mesh::Mesh;
 use crate::render::engines::fast::edge::CompactEdge;
-use crate::render::engines::fast::float_int::to_i32;
 use crate::{Capacity, Error};
 
 /// A mesh edge and a face's fan triangle that may meet: baked by
@@ -199,17 +198,8 @@ pub(super) fn pierce(a: Pt, b: Pt, t: [Pt; 3], x_major: bool) -> Option<Crossing
         return None;
     }
     let (ua, ub) = if x_major { (a.x, b.x) } else { (a.y, b.y) };
-    let span = (ga - gb).unsigned_abs();
-    let shift = (64 - span.leading_zeros()).saturating_sub(24);
-    let (num, d) = (ga >> shift, (ga >> shift) - (gb >> shift));
-    let s = if d == 0 {
-        0.0
-    } else {
-        (num as f32 / d as f32).clamp(0.0, 1.0)
-    };
-    let scale = 1 << (1 + PLACE_BITS);
     Some(Crossing {
-        place: ua * scale + to_i32(((ub - ua) * scale) as f32 * s),
+        place: place_between(ua, ub, ga, gb),
         delta: if gb > 0 { 1 } else { -1 },
     })
 }
