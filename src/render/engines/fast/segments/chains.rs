@@ -7,12 +7,6 @@ use super::{fans_at, turn, Crossing, Run, Scene, SegmentStats, SegmentWorkspace}
 use crate::bits::bit;
 use crate::Error;
 
-/// Whether the ends' terms are skipped at vertices no contour, fold or irregular
-/// fan touches. Off: it saves about a fifth of the stage on suzanne (1.27 M of
-/// 6.86 M host instructions) but took the teapot's sweep frames over the line
-/// limits from 7 to 10 of 32, so some end it skips has a term; which is not known.
-const SKIP_UNFOLDED_ENDS: bool = false;
-
 /// A vertex whose count is not known yet.
 const UNKNOWN: i16 = i16::MIN;
 
@@ -156,6 +150,7 @@ pub(super) fn propagate(
         }
         let v0 = scene.edges.get(seed).map_or(0, |e| e.a);
         let (mut head, mut tail) = (0usize, 0usize);
+        let mut own = NotHiding::new();
         if counts.get(usize::from(v0)) == Some(&UNKNOWN) {
             stats.seeds += 1;
             if let Some(c) = counts.get_mut(usize::from(v0)) {
@@ -184,19 +179,16 @@ pub(super) fn propagate(
                 }
                 let forward = e.a == v;
                 let w = if forward { e.b } else { e.a };
-                // The terms at the ends are 0 where no contour or fold touches
-                // the vertex (its triangles tile a disk once): skipped there
-                // only with `SKIP_UNFOLDED_ENDS`.
-                let folded = [v, w].map(|x| {
-                    !SKIP_UNFOLDED_ENDS
-                        || bit(marks, usize::from(x))
-                        || scene.around.is_irregular(x)
-                });
-                let own = if folded[0] || folded[1] {
-                    not_hiding(scene, e)?
-                } else {
-                    NotHiding::new()
-                };
+                // The terms at an end are 0 where no contour or fold touches the
+                // vertex and its fan is regular (its triangles tile a disk once),
+                // unless the edge may be an outline: then faces beyond its own
+                // may not hide it, and one of them may cover the end.
+                let outline = scene.may_be_outline(e);
+                let folded = [v, w]
+                    .map(|x| outline || bit(marks, usize::from(x)) || scene.around.is_irregular(x));
+                if folded[0] || folded[1] {
+                    not_hiding(scene, e, &mut own)?;
+                }
                 let end = |x: u16, y: u16, marked: bool| {
                     if marked {
                         scene.at_end(x, y, &own)

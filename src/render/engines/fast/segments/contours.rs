@@ -16,10 +16,15 @@ use crate::{Capacity, Error};
 /// The faces that do not hide one drawn edge.
 pub(super) type NotHiding = Vec<u16, MAX_NOT_HIDING>;
 
-/// The faces on an edge: two (or one) from the edge list, every one of a
-/// non-manifold edge from the faces around its end.
-pub(super) fn edge_faces(scene: &Scene<'_, '_>, e: &CompactEdge) -> Result<NotHiding, Error> {
-    let mut out = NotHiding::new();
+/// The faces on an edge, into `out`: two (or one) from the edge list, every one
+/// of a non-manifold edge from the faces around its end. (Written in place: a
+/// returned list is copied byte by byte on the M4.)
+pub(super) fn edge_faces(
+    scene: &Scene<'_, '_>,
+    e: &CompactEdge,
+    out: &mut NotHiding,
+) -> Result<(), Error> {
+    out.clear();
     let full = |needed| Error::CapacityExceeded {
         what: Capacity::NotHidingFaces,
         needed,
@@ -31,7 +36,7 @@ pub(super) fn edge_faces(scene: &Scene<'_, '_>, e: &CompactEdge) -> Result<NotHi
         if g != f {
             out.push(g).map_err(|_| full(2))?;
         }
-        return Ok(out);
+        return Ok(());
     }
     for &f in scene.around.around(e.a) {
         if out.contains(&f) {
@@ -47,21 +52,26 @@ pub(super) fn edge_faces(scene: &Scene<'_, '_>, e: &CompactEdge) -> Result<NotHi
             out.push(f).map_err(|_| full(needed))?;
         }
     }
-    Ok(out)
+    Ok(())
 }
 
-/// The drawn triangles of `faces` on side `p`-`q` (`p < q`) and the side of it
-/// each lies on: a contour when they do not cancel.
+/// Writes into `c` the drawn triangles of `faces` on side `p`-`q` (`p < q`)
+/// and the side of it each lies on, and returns their sum: a contour when they
+/// do not cancel. (Written in place: a returned record is copied byte by byte
+/// on the M4.)
 fn side_record(
     scene: &Scene<'_, '_>,
     p: u16,
     q: u16,
     faces: &[u16],
-) -> Result<(Contour, i32), Error> {
+    c: &mut Contour,
+) -> Result<i32, Error> {
     let (pp, pq) = (scene.p(p), scene.p(q));
-    let mut c = Contour {
+    *c = Contour {
         a: p,
         b: q,
+        lo: [pp.x.min(pq.x) as i16, pp.y.min(pq.y) as i16],
+        hi: [pp.x.max(pq.x) as i16, pp.y.max(pq.y) as i16],
         ..Contour::default()
     };
     let mut sum = 0;
@@ -113,7 +123,21 @@ fn side_record(
             }
         }
     }
-    Ok((c, sum))
+    Ok(sum)
+}
+
+impl Contour {
+    /// Least screen `x`, `y`.
+    #[inline(always)]
+    fn lo_i32(&self) -> (i32, i32) {
+        (i32::from(self.lo[0]), i32::from(self.lo[1]))
+    }
+
+    /// Greatest screen `x`, `y`.
+    #[inline(always)]
+    fn hi_i32(&self) -> (i32, i32) {
+        (i32::from(self.hi[0]), i32::from(self.hi[1]))
+    }
 }
 
 /// The edge `p`-`q` (`p < q`) of the mesh's edge list.
@@ -135,37 +159,31 @@ pub(super) fn find(
 ) -> Result<Option<usize>, Error> {
     let mut n = 0usize;
     marks.fill(0);
-    let mut push = |c: Contour, n: &mut usize, marks: &mut [u32]| -> Result<bool, Error> {
-        if !scene.inside(c.a) || !scene.inside(c.b) {
-            return Ok(false);
+    let mut spare = Contour::default();
+    // The record of side `p`-`q` in the next slot (in `spare` once the list is
+    // full, to count the need): `Some(true)` a contour, kept; `None` a contour
+    // with an end outside.
+    let mut record = |p: u16, q: u16, faces: &[u16], n: &mut usize, marks: &mut [u32]| {
+        let slot = match out.get_mut(*n) {
+            Some(slot) => slot,
+            None => &mut spare,
+        };
+        if side_record(scene, p, q, faces, slot)? == 0 {
+            return Ok::<_, Error>(Some(false));
         }
-        set_bit(marks, usize::from(c.a), true);
-        set_bit(marks, usize::from(c.b), true);
-        match out.get_mut(*n) {
-            Some(slot) => *slot = c,
-            None => {
-                return Err(Error::CapacityExceeded {
-                    what: Capacity::ContourEdges,
-                    needed: *n + 1,
-                    capacity: out.len(),
-                })
-            }
+        if !scene.inside(p) || !scene.inside(q) {
+            return Ok(None);
         }
+        set_bit(marks, usize::from(p), true);
+        set_bit(marks, usize::from(q), true);
         *n += 1;
-        Ok(true)
+        Ok(Some(true))
     };
-    let mut short = None;
+    let mut faces = NotHiding::new();
     for e in scene.edges {
-        let (c, sum) = side_record(scene, e.a, e.b, &edge_faces(scene, e)?)?;
-        if sum != 0 {
-            match push(c, &mut n, marks) {
-                Ok(true) => {}
-                Ok(false) => return Ok(None),
-                Err(err) => {
-                    short.get_or_insert(err);
-                    n += 1;
-                }
-            }
+        edge_faces(scene, e, &mut faces)?;
+        if record(e.a, e.b, &faces, &mut n, marks)?.is_none() {
+            return Ok(None);
         }
     }
     for f in 0..scene.mesh.face_count() as u16 {
@@ -173,24 +191,19 @@ pub(super) fn find(
         for i in 2..corners.len().saturating_sub(1) {
             let t = scene.fan(corners, i);
             let (p, q) = (t[0].min(t[1]), t[0].max(t[1]));
-            let (c, sum) = side_record(scene, p, q, &[f])?;
-            if sum != 0 {
-                // A fold: every corner of the face sees it.
-                for k in 0..corners.len() {
-                    set_bit(marks, usize::from(scene.corner(corners, k)), true);
-                }
-                match push(c, &mut n, marks) {
-                    Ok(true) => {}
-                    Ok(false) => return Ok(None),
-                    Err(err) => {
-                        short.get_or_insert(err);
-                        n += 1;
+            match record(p, q, &[f], &mut n, marks)? {
+                None => return Ok(None),
+                Some(false) => {}
+                Some(true) => {
+                    // A fold: every corner of the face sees it.
+                    for k in 0..corners.len() {
+                        set_bit(marks, usize::from(scene.corner(corners, k)), true);
                     }
                 }
             }
         }
     }
-    if short.is_some() {
+    if n > out.len() {
         return Err(Error::CapacityExceeded {
             what: Capacity::ContourEdges,
             needed: n,
@@ -205,8 +218,12 @@ pub(super) fn find(
 /// not), the faces beyond an own face's side that snapping laid within one step
 /// of the edge (the conventions' "Where snapping moves a face's side across an
 /// outline").
-pub(super) fn not_hiding(scene: &Scene<'_, '_>, e: &CompactEdge) -> Result<NotHiding, Error> {
-    let mut out = edge_faces(scene, e)?;
+pub(super) fn not_hiding(
+    scene: &Scene<'_, '_>,
+    e: &CompactEdge,
+    out: &mut NotHiding,
+) -> Result<(), Error> {
+    edge_faces(scene, e, out)?;
     let full = |needed| Error::CapacityExceeded {
         what: Capacity::NotHidingFaces,
         needed,
@@ -218,7 +235,7 @@ pub(super) fn not_hiding(scene: &Scene<'_, '_>, e: &CompactEdge) -> Result<NotHi
         _ => false,
     };
     if !outline {
-        return Ok(out);
+        return Ok(());
     }
     let (pa, pb) = (scene.p(e.a), scene.p(e.b));
     let len2 = i64::from(pb.x - pa.x).pow(2) + i64::from(pb.y - pa.y).pow(2);
@@ -226,8 +243,9 @@ pub(super) fn not_hiding(scene: &Scene<'_, '_>, e: &CompactEdge) -> Result<NotHi
         let o = orient(pa, pb, scene.p(v));
         o.unsigned_abs() < 1 << 20 && o * o <= len2
     };
-    let own = out.clone();
-    for &f in &own {
+    let mut beyond_faces = NotHiding::new();
+    for own in 0..out.len() {
+        let Some(&f) = out.get(own) else { break };
         let c = scene.corners(f);
         for i in 0..c.len() {
             let (p, q) = (scene.corner(c, i), scene.corner(c, (i + 1) % c.len()));
@@ -236,7 +254,8 @@ pub(super) fn not_hiding(scene: &Scene<'_, '_>, e: &CompactEdge) -> Result<NotHi
                 continue;
             }
             if let Some(beyond) = edge_between(scene.edges, p, q) {
-                for h in edge_faces(scene, beyond)? {
+                edge_faces(scene, beyond, &mut beyond_faces)?;
+                for &h in &beyond_faces {
                     if !out.contains(&h) {
                         let needed = out.len() + 1;
                         out.push(h).map_err(|_| full(needed))?;
@@ -245,7 +264,7 @@ pub(super) fn not_hiding(scene: &Scene<'_, '_>, e: &CompactEdge) -> Result<NotHi
             }
         }
     }
-    Ok(out)
+    Ok(())
 }
 
 /// The contour grid: cells of `2^shift` sub-pixel units, `cols` x `rows`, each
@@ -290,10 +309,7 @@ impl Grid {
         let starts = lists.cells.get_mut(..=cells).unwrap_or_default();
         starts.fill(0);
         let contours = lists.contours.get(..n).unwrap_or_default();
-        let boxes = |c: &Contour| {
-            let (p, q) = (scene.p(c.a), scene.p(c.b));
-            grid.range((p.x.min(q.x), p.y.min(q.y)), (p.x.max(q.x), p.y.max(q.y)))
-        };
+        let boxes = |c: &Contour| grid.range(c.lo_i32(), c.hi_i32());
         for c in contours {
             let (x0, x1, y0, y1) = boxes(c);
             for y in y0..=y1 {
@@ -366,17 +382,14 @@ impl Line<'_> {
         stats: &mut SegmentStats,
     ) -> Option<Crossing> {
         let (a, b) = (self.a, self.b);
+        let ((x0, y0), (x1, y1)) = (c.lo_i32(), c.hi_i32());
+        if x1 < self.lo.0 || x0 > self.hi.0 || y1 < self.lo.1 || y0 > self.hi.1 {
+            return None;
+        }
         if c.a == a.id || c.a == b.id || c.b == a.id || c.b == b.id {
             return None;
         }
         let (p, q) = (scene.p(c.a), scene.p(c.b));
-        if p.x.max(q.x) < self.lo.0
-            || p.x.min(q.x) > self.hi.0
-            || p.y.max(q.y) < self.lo.1
-            || p.y.min(q.y) > self.hi.1
-        {
-            return None;
-        }
         stats.pair_tests += 1;
         let (o1, o2) = (orient(p, q, a), orient(p, q, b));
         let s2 = side_with(o2, p, q, b);
@@ -452,6 +465,8 @@ pub(super) fn cross_all(
     let capacity = lists.crossings.len();
     let mut short = false;
     let mut pairs = scene.piercings;
+    let (mut own, mut faces) = (NotHiding::new(), NotHiding::new());
+    let mut side = Contour::default();
     for (index, (e, run)) in scene.edges.iter().zip(runs.iter_mut()).enumerate() {
         // The edge's piercing pairs (sorted by edge).
         let skip = pairs.partition_point(|p| usize::from(p.edge) < index);
@@ -467,7 +482,7 @@ pub(super) fn cross_all(
             stamp = 0;
         }
         stamp += 1;
-        let own = not_hiding(scene, e)?;
+        not_hiding(scene, e, &mut own)?;
         let (a, b) = (scene.p(e.a), scene.p(e.b));
         let line = Line {
             a,
@@ -530,18 +545,21 @@ pub(super) fn cross_all(
                         continue;
                     }
                     let diagonal = j == 2 && k + 2 < corners.len() || j == 0 && k > 1;
-                    let (c, sum) = if diagonal {
-                        side_record(scene, u, v, &[f])?
+                    let sum = if diagonal {
+                        side_record(scene, u, v, &[f], &mut side)?
                     } else {
                         match edge_between(scene.edges, u, v) {
-                            Some(m) => side_record(scene, u, v, &edge_faces(scene, m)?)?,
-                            None => side_record(scene, u, v, &[f])?,
+                            Some(m) => {
+                                edge_faces(scene, m, &mut faces)?;
+                                side_record(scene, u, v, &faces, &mut side)?
+                            }
+                            None => side_record(scene, u, v, &[f], &mut side)?,
                         }
                     };
                     if sum != 0 {
                         continue;
                     }
-                    if let Some(x) = line.cross(scene, &c, stats) {
+                    if let Some(x) = line.cross(scene, &side, stats) {
                         add(x, &mut used);
                     }
                 }

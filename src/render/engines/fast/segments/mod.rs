@@ -60,13 +60,19 @@ pub const MAX_GRID_CELLS: usize = 512;
 /// `2^-(S+1)` px): [`Run`] boundaries are in `2^-(S+1+PLACE_BITS)` px.
 pub(crate) const PLACE_BITS: u32 = 4;
 
-/// A contour: a triangle side (welded ends, `a < b`) and its drawn triangles'
-/// faces with the side of `a`-`b` each lies on (`+1` left, `-1` right).
+/// A contour: a triangle side (welded ends, `a < b`), its screen box, and its
+/// drawn triangles' faces with the side of `a`-`b` each lies on (`+1` left, `-1`
+/// right).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Contour {
     a: u16,
     b: u16,
+    /// Least screen `x`, `y` of its ends (`2^-S` px): most crossing candidates
+    /// are told apart by the box alone, without the vertex cache.
+    lo: [i16; 2],
+    /// Greatest screen `x`, `y` of its ends.
+    hi: [i16; 2],
     faces: [u16; MAX_SIDE_TRIANGLES],
     sides: [i8; MAX_SIDE_TRIANGLES],
     count: u8,
@@ -191,6 +197,8 @@ impl<const CONTOURS: usize, const CROSSINGS: usize, const CELL_ENTRIES: usize>
             contours: [Contour {
                 a: 0,
                 b: 0,
+                lo: [0; 2],
+                hi: [0; 2],
                 faces: [0; MAX_SIDE_TRIANGLES],
                 sides: [0; MAX_SIDE_TRIANGLES],
                 count: 0,
@@ -364,6 +372,20 @@ impl Scene<'_, '_> {
         self.around.welded(corners.get(k).copied().unwrap_or(0))
     }
 
+    /// May edge `e` be an outline, whose faces that do not hide it reach beyond
+    /// its own ([`contours::not_hiding`])? A boundary or non-manifold edge, or
+    /// one between a face that faces the eye and one that does not (by the
+    /// faces' planes: snapping may still lay both on one side of it on screen,
+    /// so it need not be a contour).
+    #[inline(always)]
+    fn may_be_outline(&self, e: &CompactEdge) -> bool {
+        use crate::mesh::EdgeKind;
+        match e.kind {
+            EdgeKind::Boundary | EdgeKind::NonManifold => true,
+            _ => e.faces[0] == e.faces[1] || self.facing(e.faces[0]) != self.facing(e.faces[1]),
+        }
+    }
+
     /// Is edge `e` drawn in this view (a feature edge)?
     fn is_drawn(&self, e: &CompactEdge) -> bool {
         use crate::mesh::EdgeKind;
@@ -393,7 +415,8 @@ pub(crate) fn place_between(ua: i32, ub: i32, num: i64, other: i64) -> i32 {
     let t = if d == 0 {
         0.0
     } else {
-        (n as f32 / d as f32).clamp(0.0, 1.0)
+        // Both below 2^25 in magnitude: through `i32`, no 64-bit conversion call.
+        (n as i32 as f32 / d as i32 as f32).clamp(0.0, 1.0)
     };
     let scale = 1 << (1 + PLACE_BITS);
     ua * scale + super::float_int::to_i32(((ub - ua) * scale) as f32 * t)
