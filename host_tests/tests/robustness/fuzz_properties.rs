@@ -31,7 +31,8 @@ use host_tests::random::Rng;
 use pbuffer::mesh::{EdgeAdjacency, HalfEdgeRecord, Mesh, MeshEdge};
 use pbuffer::order::BspSizes;
 use pbuffer::render::{
-    storage_rows, BakedMesh, CompactEdge, Depth, FacePlane, FastRenderer, ProjectedVertex, RowCodes,
+    storage_rows, BakedMesh, CompactEdge, Depth, FacePlane, FastRenderer, LineVisibility, Piercing,
+    ProjectedVertex, RowCodes, VertexFaces,
 };
 use pbuffer::{
     Camera, CodeFillRenderer, CodeWorkspace, Cull, Dashes, DepthOrder, DrawMode, Error,
@@ -63,7 +64,7 @@ fn only_cases() -> Option<Vec<usize>> {
 /// Mesh + camera cases of the error property.
 const ERROR_CASES: usize = 200_000;
 
-/// The five engines.
+/// The engines.
 #[derive(Clone, Copy, Debug)]
 enum Engine {
     Crossings,
@@ -74,6 +75,9 @@ enum Engine {
     Z32,
     /// The fast engine (the default), its mesh baked for the case.
     Fast,
+    /// The fast engine with hidden lines by the segment (its vertex faces and
+    /// piercing pairs baked too).
+    FastSegments,
 }
 
 /// What one frame needs besides mesh and camera.
@@ -205,18 +209,38 @@ fn render_s<F: LeEqU32>(job: &Job, engine: Engine, sink: &mut Recorder) -> Resul
         Engine::Ordered => render_ordered::<F>(job, sink),
         Engine::Z16 => render_z::<F, u16>(job, sink),
         Engine::Z32 => render_z::<F, u32>(job, sink),
-        Engine::Fast => render_fast::<F>(job, sink),
+        Engine::Fast => render_fast::<F>(job, sink, false),
+        Engine::FastSegments => render_fast::<F>(job, sink, true),
     }
 }
 
 /// The fast engine with room for 64 active facets and 64 lines (more is
-/// `CapacityExceeded`), a clip pool for every face cut by six planes.
-fn render_fast<F: LeEqU32>(job: &Job, sink: &mut Recorder) -> Result<Stats, Error> {
+/// `CapacityExceeded`), a clip pool for every face cut by six planes; with
+/// `by_segment`, hidden lines by the segment (room for 4,096 piercing pairs).
+fn render_fast<F: LeEqU32>(
+    job: &Job,
+    sink: &mut Recorder,
+    by_segment: bool,
+) -> Result<Stats, Error> {
     let mesh = job.mesh;
     let mut planes = vec![FacePlane::default(); mesh.face_count()];
     let mut edges = vec![CompactEdge::default(); job.edges.edges().len()];
     BakedMesh::bake(mesh, job.edges, &mut planes, &mut edges)?;
-    let baked = BakedMesh::new(*mesh, &planes, &edges)?;
+    let mut baked = BakedMesh::new(*mesh, &planes, &edges)?;
+    let nv = mesh.vertices().len();
+    let (mut weld, mut starts) = (vec![0u16; nv], vec![0u16; nv + 1]);
+    let mut around = vec![0u16; mesh.indices().len()];
+    let mut irregular = vec![0u32; nv.div_ceil(32)];
+    let mut pairs = vec![Piercing::default(); if by_segment { 4096 } else { 0 }];
+    let mut settings = job.settings;
+    if by_segment {
+        let faces = VertexFaces::bake(mesh, &mut weld, &mut starts, &mut around, &mut irregular)?;
+        let n = Piercing::bake(mesh, &edges, &mut pairs)?;
+        baked = baked
+            .with_vertex_faces(faces)?
+            .with_piercings(pairs.get(..n).unwrap_or_default())?;
+        settings.lines = LineVisibility::BySegment;
+    }
     let n = mesh.vertices().len() - usize::from(job.short);
     let pool = mesh.indices().len() + 6 * mesh.face_count();
     let (w, h) = (usize::from(job.w), usize::from(job.h));
@@ -225,7 +249,7 @@ fn render_fast<F: LeEqU32>(job: &Job, sink: &mut Recorder) -> Result<Stats, Erro
     engine.render(
         &baked,
         job.camera,
-        &job.settings,
+        &settings,
         &mut buffers.workspace(),
         &MonoPalette::default(),
         sink,
@@ -398,6 +422,7 @@ fn valid_scenes_never_panic_or_write_outside_the_target() {
             Engine::Z16,
             Engine::Z32,
             Engine::Fast,
+            Engine::FastSegments,
         ] {
             frames += 1;
             let r = catch_unwind(AssertUnwindSafe(|| render(&job, engine, s)));
@@ -417,6 +442,14 @@ fn valid_scenes_never_panic_or_write_outside_the_target() {
                     &sink.outside[..sink.outside.len().min(3)]
                 ));
             }
+            // The segment path drew (not left to the per-pixel test).
+            if let (Engine::FastSegments, Ok(stats)) = (engine, &result) {
+                if stats.segments.drawn > 0 && stats.segments.fallback == 0 {
+                    *outcomes
+                        .entry("FastSegments by segment".into())
+                        .or_insert(0) += 1;
+                }
+            }
             let key = match &result {
                 Ok(_) => "Ok".to_string(),
                 Err(e) => format!("{e:?}")
@@ -434,11 +467,14 @@ fn valid_scenes_never_panic_or_write_outside_the_target() {
                 Err(Error::OutOfRange) => true,
                 // More fragments than face ids can name.
                 Err(Error::TooManyFaces { faces, max }) => {
-                    matches!(engine, Engine::Ordered | Engine::Fast) && faces > max
+                    matches!(
+                        engine,
+                        Engine::Ordered | Engine::Fast | Engine::FastSegments
+                    ) && faces > max
                 }
                 // The fast engine keeps at most 6 sub-pixel bits (S = 12 asks 12).
                 Err(Error::SubpixelTooFine { bits, max }) => {
-                    matches!(engine, Engine::Fast) && bits > max
+                    matches!(engine, Engine::Fast | Engine::FastSegments) && bits > max
                 }
                 Err(_) => false,
             };
@@ -491,6 +527,7 @@ fn valid_scenes_never_panic_or_write_outside_the_target() {
         "Ordered Ok",
         "Ordered CodeTooWide",
         "Fast Ok",
+        "FastSegments by segment",
     ] {
         assert!(
             outcomes.get(k).copied().unwrap_or(0) > 0,

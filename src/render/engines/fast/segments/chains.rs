@@ -39,7 +39,7 @@ impl Scene<'_, '_> {
                 let t = pt;
                 let area = orient(t[0], t[1], t[2]);
                 if area != 0 && covers_nearer(t, area, pv) {
-                    count += 1;
+                    count += self.counts_as(corners, area);
                 }
             }
         }
@@ -84,7 +84,7 @@ impl Scene<'_, '_> {
                         && s * side(pw, pv, pb) > 0
                         && plane_minus([pv, pu, pw], area, pb) > 0
                     {
-                        count += 1;
+                        count += self.counts_as(corners, area);
                     }
                 }
             }

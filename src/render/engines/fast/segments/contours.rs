@@ -55,16 +55,20 @@ pub(super) fn edge_faces(
     Ok(())
 }
 
-/// Writes into `c` the drawn triangles of `faces` on side `p`-`q` (`p < q`)
-/// and the side of it each lies on, and returns their sum: a contour when they
-/// do not cancel. (Written in place: a returned record is copied byte by byte
-/// on the M4.)
+/// Writes into `c` the drawn triangles of `faces` on side `p`-`q` (`p < q`),
+/// each with the side of it that counts (`+1` left, `-1` right): the side it
+/// lies on, turned where the triangle winds against its face (a face covers
+/// where its fan's winding, taken in the face's own sense, is not 0), and
+/// returns their sum: a contour when they do not cancel. `folds` gets the sum
+/// of the sides they lie on (not 0: the face folds on screen there). (Written
+/// in place: a returned record is copied byte by byte on the M4.)
 fn side_record(
     scene: &Scene<'_, '_>,
     p: u16,
     q: u16,
     faces: &[u16],
     c: &mut Contour,
+    folds: &mut i32,
 ) -> Result<i32, Error> {
     let (pp, pq) = (scene.p(p), scene.p(q));
     *c = Contour {
@@ -75,6 +79,7 @@ fn side_record(
         ..Contour::default()
     };
     let mut sum = 0;
+    *folds = 0;
     for (i, &f) in faces.iter().enumerate() {
         if faces.get(..i).is_some_and(|before| before.contains(&f)) || !scene.drawn(f) {
             continue;
@@ -83,44 +88,57 @@ fn side_record(
         let n = corners.len();
         let at = |k: usize| scene.corner(corners, k);
         let is = |u: u16, v: u16| u != v && (u.min(v), u.max(v)) == (p, q);
-        // The third corners of the fan triangles on the side: a polygon side's
-        // one, a diagonal's two (c0-ci, between triangles i - 1 and i).
+        // The third corners of the fan triangles on the side, each with `+1`
+        // where its triangle runs from `p` to `q`: a polygon side's one, a
+        // diagonal's two (c0-ci, between triangles i - 1 and i).
+        let from_p = |u: u16| if u == p { 1i8 } else { -1 };
         let mut thirds = [None; 2];
         for i in (0..n).filter(|_| n >= 3) {
             let (u, v) = (at(i), at((i + 1) % n));
             if is(u, v) {
-                thirds[0] = Some(if i == 0 {
+                let r = if i == 0 {
                     at(2)
                 } else if i == n - 1 {
                     at(n - 2)
                 } else {
                     at(0)
-                });
+                };
+                thirds[0] = Some((r, from_p(u)));
             } else if (2..n.saturating_sub(1)).contains(&i) && is(at(0), u) {
-                thirds = [Some(at(i - 1)), Some(at(i + 1))];
+                thirds = [
+                    Some((at(i - 1), from_p(u))),
+                    Some((at(i + 1), from_p(at(0)))),
+                ];
             }
         }
-        for r in thirds.into_iter().flatten() {
-            {
-                let s = orient(pp, pq, scene.p(r)).signum() as i8;
-                if s == 0 {
-                    continue;
-                }
-                sum += i32::from(s);
-                let (Some(fs), Some(ss)) = (
-                    c.faces.get_mut(usize::from(c.count)),
-                    c.sides.get_mut(usize::from(c.count)),
-                ) else {
-                    return Err(Error::CapacityExceeded {
-                        what: Capacity::SideTriangles,
-                        needed: usize::from(c.count) + 1,
-                        capacity: MAX_SIDE_TRIANGLES,
-                    });
-                };
-                *fs = f;
-                *ss = s;
-                c.count += 1;
+        let mut winding = None;
+        for (r, dir) in thirds.into_iter().flatten() {
+            let s = orient(pp, pq, scene.p(r)).signum() as i8;
+            if s == 0 {
+                continue;
             }
+            *folds += i32::from(s);
+            // The triangle's area has the sign `s * dir`; it counts with the
+            // sign of the face's: so its side counts as `dir` times the face's.
+            let counted = if n == 3 {
+                s
+            } else {
+                dir * *winding.get_or_insert_with(|| scene.winding(corners))
+            };
+            sum += i32::from(counted);
+            let (Some(fs), Some(ss)) = (
+                c.faces.get_mut(usize::from(c.count)),
+                c.sides.get_mut(usize::from(c.count)),
+            ) else {
+                return Err(Error::CapacityExceeded {
+                    what: Capacity::SideTriangles,
+                    needed: usize::from(c.count) + 1,
+                    capacity: MAX_SIDE_TRIANGLES,
+                });
+            };
+            *fs = f;
+            *ss = counted;
+            c.count += 1;
         }
     }
     Ok(sum)
@@ -163,26 +181,28 @@ pub(super) fn find(
     // The record of side `p`-`q` in the next slot (in `spare` once the list is
     // full, to count the need): `Some(true)` a contour, kept; `None` a contour
     // with an end outside.
-    let mut record = |p: u16, q: u16, faces: &[u16], n: &mut usize, marks: &mut [u32]| {
-        let slot = match out.get_mut(*n) {
-            Some(slot) => slot,
-            None => &mut spare,
+    let mut record =
+        |p: u16, q: u16, faces: &[u16], n: &mut usize, marks: &mut [u32], folds: &mut i32| {
+            let slot = match out.get_mut(*n) {
+                Some(slot) => slot,
+                None => &mut spare,
+            };
+            if side_record(scene, p, q, faces, slot, folds)? == 0 {
+                return Ok::<_, Error>(Some(false));
+            }
+            if !scene.inside(p) || !scene.inside(q) {
+                return Ok(None);
+            }
+            set_bit(marks, usize::from(p), true);
+            set_bit(marks, usize::from(q), true);
+            *n += 1;
+            Ok(Some(true))
         };
-        if side_record(scene, p, q, faces, slot)? == 0 {
-            return Ok::<_, Error>(Some(false));
-        }
-        if !scene.inside(p) || !scene.inside(q) {
-            return Ok(None);
-        }
-        set_bit(marks, usize::from(p), true);
-        set_bit(marks, usize::from(q), true);
-        *n += 1;
-        Ok(Some(true))
-    };
     let mut faces = NotHiding::new();
+    let mut folds = 0;
     for e in scene.edges {
         edge_faces(scene, e, &mut faces)?;
-        if record(e.a, e.b, &faces, &mut n, marks)?.is_none() {
+        if record(e.a, e.b, &faces, &mut n, marks, &mut folds)?.is_none() {
             return Ok(None);
         }
     }
@@ -191,14 +211,13 @@ pub(super) fn find(
         for i in 2..corners.len().saturating_sub(1) {
             let t = scene.fan(corners, i);
             let (p, q) = (t[0].min(t[1]), t[0].max(t[1]));
-            match record(p, q, &[f], &mut n, marks)? {
-                None => return Ok(None),
-                Some(false) => {}
-                Some(true) => {
-                    // A fold: every corner of the face sees it.
-                    for k in 0..corners.len() {
-                        set_bit(marks, usize::from(scene.corner(corners, k)), true);
-                    }
+            let Some(contour) = record(p, q, &[f], &mut n, marks, &mut folds)? else {
+                return Ok(None);
+            };
+            if contour || folds != 0 {
+                // A fold: every corner of the face sees it.
+                for k in 0..corners.len() {
+                    set_bit(marks, usize::from(scene.corner(corners, k)), true);
                 }
             }
         }
@@ -467,6 +486,7 @@ pub(super) fn cross_all(
     let mut pairs = scene.piercings;
     let (mut own, mut faces) = (NotHiding::new(), NotHiding::new());
     let mut side = Contour::default();
+    let mut folds = 0;
     for (index, (e, run)) in scene.edges.iter().zip(runs.iter_mut()).enumerate() {
         // The edge's piercing pairs (sorted by edge).
         let skip = pairs.partition_point(|p| usize::from(p.edge) < index);
@@ -546,14 +566,14 @@ pub(super) fn cross_all(
                     }
                     let diagonal = j == 2 && k + 2 < corners.len() || j == 0 && k > 1;
                     let sum = if diagonal {
-                        side_record(scene, u, v, &[f], &mut side)?
+                        side_record(scene, u, v, &[f], &mut side, &mut folds)?
                     } else {
                         match edge_between(scene.edges, u, v) {
                             Some(m) => {
                                 edge_faces(scene, m, &mut faces)?;
-                                side_record(scene, u, v, &faces, &mut side)?
+                                side_record(scene, u, v, &faces, &mut side, &mut folds)?
                             }
-                            None => side_record(scene, u, v, &[f], &mut side)?,
+                            None => side_record(scene, u, v, &[f], &mut side, &mut folds)?,
                         }
                     };
                     if sum != 0 {
@@ -569,11 +589,11 @@ pub(super) fn cross_all(
             if own.contains(&p.face) || !scene.drawn(p.face) {
                 continue;
             }
-            let t = scene
-                .fan(scene.corners(p.face), usize::from(p.fan))
-                .map(|v| scene.p(v));
-            if let Some(x) = pierce(a, b, t, line.x_major) {
+            let corners = scene.corners(p.face);
+            let t = scene.fan(corners, usize::from(p.fan)).map(|v| scene.p(v));
+            if let Some(mut x) = pierce(a, b, t, line.x_major) {
                 stats.piercings += 1;
+                x.delta *= scene.counts_as(corners, orient(t[0], t[1], t[2]));
                 add(x, &mut used);
             }
         }

@@ -366,6 +366,35 @@ impl Scene<'_, '_> {
         [c(0), c(i), c(i + 1)]
     }
 
+    /// The sense a face with `corners` winds in on screen: the sign of its fan's
+    /// area (`+1` for none). A fan triangle counts as covering with its own
+    /// area's sign times this: for a simple polygon, once inside and not at all
+    /// outside, however its fan overlaps.
+    fn winding(&self, corners: &[u32]) -> i8 {
+        let p = |k: usize| self.p(corners.get(k).copied().unwrap_or(0) as u16);
+        let p0 = p(0);
+        let mut total = 0i64;
+        for i in 1..corners.len().saturating_sub(1) {
+            total += exact::orient(p0, p(i), p(i + 1));
+        }
+        if total < 0 {
+            -1
+        } else {
+            1
+        }
+    }
+
+    /// How a fan triangle of a face with `corners`, of twice-area `area` (not
+    /// 0), counts where it covers: `+1`, or `-1` where it winds against its face.
+    #[inline(always)]
+    fn counts_as(&self, corners: &[u32], area: i64) -> i16 {
+        if corners.len() == 3 {
+            1
+        } else {
+            i16::from(self.winding(corners)) * area.signum() as i16
+        }
+    }
+
     /// Corner `k` of a face with `corners`, welded.
     #[inline(always)]
     fn corner(&self, corners: &[u32], k: usize) -> u16 {
