@@ -10,7 +10,8 @@
 use host_tests::frame::{CameraSpec, EngineSpec, ModeSpec, ProjectionSpec, RenderSpec};
 use host_tests::metrics::{covered_away, snapping_bound, unexplained_diffs};
 use host_tests::pipeline::render_frame;
-use host_tests::reference3d::reference_frame;
+use host_tests::reference3d::{reference_frame, RefFrame};
+use host_tests::shapes::Scene;
 use host_tests::tools::report::engines::{scene_names, spec};
 use host_tests::tools::report::errors::{measure, Errors};
 use host_tests::tools::report::load_scene;
@@ -43,10 +44,7 @@ fn fast_engine_is_within_the_accuracy_limits_on_every_scene() {
     println!("|:--|:--|--:|--:|--:|--:|--:|--:|--:|--:|");
     for size in [(400, 240), (128, 64)] {
         for name in scene_names(false) {
-            let scene = load_scene(name).unwrap_or_else(|e| panic!("{name}: {e}"));
-            let cam = scene.camera(size.0, size.1, false);
-            let rf = reference_frame(&scene.mesh, &cam, &spec(EngineSpec::ZBuffer, size))
-                .unwrap_or_else(|e| panic!("{name}: reference: {e}"));
+            let (scene, cam, rf) = with_reference(name, size);
             let frame = render_frame(&scene.mesh, &cam, &spec(EngineSpec::Fast, size))
                 .unwrap_or_else(|e| panic!("{name}: fast: {e}"));
             let e = measure(&frame, &rf);
@@ -114,9 +112,19 @@ fn fast_engine_is_within_the_accuracy_limits_on_every_scene() {
     );
 }
 
+/// `report`'s scene `name` at `size`: the scene, its camera and the f64
+/// reference frame (dashed, S = 4).
+fn with_reference(name: &str, size: (usize, usize)) -> (Scene, CameraSpec, RefFrame) {
+    let scene = load_scene(name).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let cam = scene.camera(size.0, size.1, false);
+    let rf = reference_frame(&scene.mesh, &cam, &spec(EngineSpec::ZBuffer, size))
+        .unwrap_or_else(|e| panic!("{name}: reference: {e}"));
+    (scene, cam, rf)
+}
+
 /// Far differences, wrong faces and depth-order errors as a share of the pixels the
 /// reference covers away from edges, in %.
-fn far_pct(e: &Errors, rf: &host_tests::reference3d::RefFrame) -> f64 {
+fn far_pct(e: &Errors, rf: &RefFrame) -> f64 {
     let away = covered_away(rf);
     let far = e.far_diffs + e.wrong_faces + e.depth_order;
     if away > 0 {
@@ -265,10 +273,7 @@ fn lines_by_the_segment_on_every_report_scene() {
     println!("|:--|:--|--:|--:|--:|");
     for size in [(400, 240), (128, 64)] {
         for name in scene_names(false) {
-            let scene = load_scene(name).unwrap_or_else(|e| panic!("{name}: {e}"));
-            let cam = scene.camera(size.0, size.1, false);
-            let rf = reference_frame(&scene.mesh, &cam, &spec(EngineSpec::ZBuffer, size))
-                .unwrap_or_else(|e| panic!("{name}: reference: {e}"));
+            let (scene, cam, rf) = with_reference(name, size);
             let with = |lines| RenderSpec {
                 lines,
                 ..spec(EngineSpec::Fast, size)
