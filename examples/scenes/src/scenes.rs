@@ -423,12 +423,14 @@ pub type SuzanneSegmentBuffers = SegmentBuffers<
     SUZANNE_CROSSINGS,
     SUZANNE_GRID_ENTRIES,
 >;
-/// Contour edges suzanne's segment storage holds (her 8 frames need up to 291).
+/// Contour edges suzanne's segment storage holds (her 8 frames need up to 271:
+/// `cargo test --release -p host_tests --test firmware firmware_example_frames --
+/// --nocapture` prints the peaks).
 pub const SUZANNE_CONTOURS: usize = 512;
-/// Crossings suzanne's segment storage holds (her 8 frames need up to 341).
+/// Crossings suzanne's segment storage holds (her 8 frames need up to 266).
 pub const SUZANNE_CROSSINGS: usize = 768;
 /// Contour-grid entries suzanne's segment storage holds (her 8 frames need up to
-/// 425).
+/// 479).
 pub const SUZANNE_GRID_ENTRIES: usize = 1024;
 
 /// Segment storage for the panel part (24 vertices, its 36 edges): room for
@@ -449,7 +451,7 @@ pub const PANEL_CONTOURS: usize = 32;
 /// Crossings the panel's segment storage holds (its 4 frames need up to 13).
 pub const PANEL_CROSSINGS: usize = 32;
 /// Contour-grid entries the panel's segment storage holds (its 4 frames need up to
-/// 26).
+/// 36).
 pub const PANEL_GRID_ENTRIES: usize = 64;
 
 /// Draws one frame of `baked` seen from `view` into `sink` with the fast engine:

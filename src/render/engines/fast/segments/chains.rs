@@ -1,8 +1,8 @@
 //! Counts carried along chains of drawn edges, seeded by point tests; then each
 //! drawn edge's pieces.
 
-use super::contours::{not_hiding, NotHiding};
 use super::exact::{covers_nearer, orient, plane_minus, side, Pt};
+use super::sides::{not_hiding, NotHiding};
 use super::{fans_at, turn, Crossing, Run, Scene, SegmentStats, SegmentWorkspace};
 use crate::bits::bit;
 use crate::Error;

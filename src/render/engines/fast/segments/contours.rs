@@ -1,171 +1,14 @@
 //! Contour edges, their screen grid, and each drawn edge's crossings with the
 //! nearer ones.
 
-use heapless::Vec;
-
 use super::exact::{orient, segment_minus, side_with, Pt};
 use super::piercings::pierce;
+use super::sides::{edge_between, edge_faces, not_hiding, side_record, NotHiding};
 use super::{
     place_between, turn, Contour, Crossing, Run, Scene, SegmentLists, SegmentStats, MAX_GRID_CELLS,
-    MAX_NOT_HIDING, MAX_SIDE_TRIANGLES,
 };
 use crate::bits::set_bit;
-use crate::render::engines::fast::edge::CompactEdge;
 use crate::{Capacity, Error};
-
-/// The faces that do not hide one drawn edge.
-pub(super) type NotHiding = Vec<u16, MAX_NOT_HIDING>;
-
-/// The faces on an edge, into `out`: two (or one) from the edge list, every one
-/// of a non-manifold edge from the faces around its end. (Written in place: a
-/// returned list is copied byte by byte on the M4.)
-pub(super) fn edge_faces(
-    scene: &Scene<'_, '_>,
-    e: &CompactEdge,
-    out: &mut NotHiding,
-) -> Result<(), Error> {
-    out.clear();
-    let full = |needed| Error::CapacityExceeded {
-        what: Capacity::NotHidingFaces,
-        needed,
-        capacity: MAX_NOT_HIDING,
-    };
-    if e.kind != crate::mesh::EdgeKind::NonManifold {
-        let [f, g] = e.faces;
-        out.push(f).map_err(|_| full(1))?;
-        if g != f {
-            out.push(g).map_err(|_| full(2))?;
-        }
-        return Ok(());
-    }
-    for &f in scene.around.around(e.a) {
-        if out.contains(&f) {
-            continue;
-        }
-        let c = scene.corners(f);
-        let has = (0..c.len()).any(|i| {
-            let (p, q) = (scene.corner(c, i), scene.corner(c, (i + 1) % c.len()));
-            (p.min(q), p.max(q)) == (e.a, e.b)
-        });
-        if has {
-            let needed = out.len() + 1;
-            out.push(f).map_err(|_| full(needed))?;
-        }
-    }
-    Ok(())
-}
-
-/// Writes into `c` the drawn triangles of `faces` on side `p`-`q` (`p < q`),
-/// each with the side of it that counts (`+1` left, `-1` right): the side it
-/// lies on, turned where the triangle winds against its face (a face covers
-/// where its fan's winding, taken in the face's own sense, is not 0), and
-/// returns their sum: a contour when they do not cancel. `folds` gets the sum
-/// of the sides they lie on (not 0: the face folds on screen there). (Written
-/// in place: a returned record is copied byte by byte on the M4.)
-fn side_record(
-    scene: &Scene<'_, '_>,
-    p: u16,
-    q: u16,
-    faces: &[u16],
-    c: &mut Contour,
-    folds: &mut i32,
-) -> Result<i32, Error> {
-    let (pp, pq) = (scene.p(p), scene.p(q));
-    *c = Contour {
-        a: p,
-        b: q,
-        lo: [pp.x.min(pq.x) as i16, pp.y.min(pq.y) as i16],
-        hi: [pp.x.max(pq.x) as i16, pp.y.max(pq.y) as i16],
-        ..Contour::default()
-    };
-    let mut sum = 0;
-    *folds = 0;
-    for (i, &f) in faces.iter().enumerate() {
-        if faces.get(..i).is_some_and(|before| before.contains(&f)) || !scene.drawn(f) {
-            continue;
-        }
-        let corners = scene.corners(f);
-        let n = corners.len();
-        let at = |k: usize| scene.corner(corners, k);
-        let is = |u: u16, v: u16| u != v && (u.min(v), u.max(v)) == (p, q);
-        // The third corners of the fan triangles on the side, each with `+1`
-        // where its triangle runs from `p` to `q`: a polygon side's one, a
-        // diagonal's two (c0-ci, between triangles i - 1 and i).
-        let from_p = |u: u16| if u == p { 1i8 } else { -1 };
-        let mut thirds = [None; 2];
-        for i in (0..n).filter(|_| n >= 3) {
-            let (u, v) = (at(i), at((i + 1) % n));
-            if is(u, v) {
-                let r = if i == 0 {
-                    at(2)
-                } else if i == n - 1 {
-                    at(n - 2)
-                } else {
-                    at(0)
-                };
-                thirds[0] = Some((r, from_p(u)));
-            } else if (2..n.saturating_sub(1)).contains(&i) && is(at(0), u) {
-                thirds = [
-                    Some((at(i - 1), from_p(u))),
-                    Some((at(i + 1), from_p(at(0)))),
-                ];
-            }
-        }
-        let mut winding = None;
-        for (r, dir) in thirds.into_iter().flatten() {
-            let s = orient(pp, pq, scene.p(r)).signum() as i8;
-            if s == 0 {
-                continue;
-            }
-            *folds += i32::from(s);
-            // The triangle's area has the sign `s * dir`; it counts with the
-            // sign of the face's: so its side counts as `dir` times the face's.
-            let counted = if n == 3 {
-                s
-            } else {
-                dir * *winding.get_or_insert_with(|| scene.winding(corners))
-            };
-            sum += i32::from(counted);
-            let (Some(fs), Some(ss)) = (
-                c.faces.get_mut(usize::from(c.count)),
-                c.sides.get_mut(usize::from(c.count)),
-            ) else {
-                return Err(Error::CapacityExceeded {
-                    what: Capacity::SideTriangles,
-                    needed: usize::from(c.count) + 1,
-                    capacity: MAX_SIDE_TRIANGLES,
-                });
-            };
-            *fs = f;
-            *ss = counted;
-            c.count += 1;
-        }
-    }
-    Ok(sum)
-}
-
-impl Contour {
-    /// Least screen `x`, `y`.
-    #[inline(always)]
-    fn lo_i32(&self) -> (i32, i32) {
-        (i32::from(self.lo[0]), i32::from(self.lo[1]))
-    }
-
-    /// Greatest screen `x`, `y`.
-    #[inline(always)]
-    fn hi_i32(&self) -> (i32, i32) {
-        (i32::from(self.hi[0]), i32::from(self.hi[1]))
-    }
-}
-
-/// The edge `p`-`q` (`p < q`) of the mesh's edge list.
-fn edge_between(edges: &[CompactEdge], p: u16, q: u16) -> Option<&CompactEdge> {
-    let i = edges.partition_point(|e| (e.a, e.b) < (p, q));
-    match edges.get(i) {
-        Some(e) if (e.a, e.b) == (p, q) => Some(e),
-        _ => edges.iter().find(|e| (e.a, e.b) == (p, q)),
-    }
-}
 
 /// Finds the frame's contours into `out`: the mesh's edges and its faces' fan
 /// diagonals whose drawn triangles do not lie one on each side. `None`: a
@@ -230,60 +73,6 @@ pub(super) fn find(
         });
     }
     Ok(Some(n))
-}
-
-/// The faces that do not hide drawn edge `e`: its own, and where it is an
-/// outline (a boundary, or between a face that faces the eye and one that does
-/// not), the faces beyond an own face's side that snapping laid within one step
-/// of the edge (the conventions' "Where snapping moves a face's side across an
-/// outline").
-pub(super) fn not_hiding(
-    scene: &Scene<'_, '_>,
-    e: &CompactEdge,
-    out: &mut NotHiding,
-) -> Result<(), Error> {
-    edge_faces(scene, e, out)?;
-    let full = |needed| Error::CapacityExceeded {
-        what: Capacity::NotHidingFaces,
-        needed,
-        capacity: MAX_NOT_HIDING,
-    };
-    let outline = match out.as_slice() {
-        [_] => true,
-        [f, g] => scene.facing(*f) != scene.facing(*g),
-        _ => false,
-    };
-    if !outline {
-        return Ok(());
-    }
-    let (pa, pb) = (scene.p(e.a), scene.p(e.b));
-    let len2 = i64::from(pb.x - pa.x).pow(2) + i64::from(pb.y - pa.y).pow(2);
-    let near = |v: u16| {
-        let o = orient(pa, pb, scene.p(v));
-        o.unsigned_abs() < 1 << 20 && o * o <= len2
-    };
-    let mut beyond_faces = NotHiding::new();
-    for own in 0..out.len() {
-        let Some(&f) = out.get(own) else { break };
-        let c = scene.corners(f);
-        for i in 0..c.len() {
-            let (p, q) = (scene.corner(c, i), scene.corner(c, (i + 1) % c.len()));
-            let (p, q) = (p.min(q), p.max(q));
-            if (p, q) == (e.a, e.b) || !near(p) || !near(q) {
-                continue;
-            }
-            if let Some(beyond) = edge_between(scene.edges, p, q) {
-                edge_faces(scene, beyond, &mut beyond_faces)?;
-                for &h in &beyond_faces {
-                    if !out.contains(&h) {
-                        let needed = out.len() + 1;
-                        out.push(h).map_err(|_| full(needed))?;
-                    }
-                }
-            }
-        }
-    }
-    Ok(())
 }
 
 /// The contour grid: cells of `2^shift` sub-pixel units, `cols` x `rows`, each
@@ -401,8 +190,7 @@ impl Line<'_> {
         stats: &mut SegmentStats,
     ) -> Option<Crossing> {
         let (a, b) = (self.a, self.b);
-        let ((x0, y0), (x1, y1)) = (c.lo_i32(), c.hi_i32());
-        if x1 < self.lo.0 || x0 > self.hi.0 || y1 < self.lo.1 || y0 > self.hi.1 {
+        if !self.box_meets(c.lo_i32(), c.hi_i32()) {
             return None;
         }
         if c.a == a.id || c.a == b.id || c.b == a.id || c.b == b.id {
@@ -410,15 +198,7 @@ impl Line<'_> {
         }
         let (p, q) = (scene.p(c.a), scene.p(c.b));
         stats.pair_tests += 1;
-        let (o1, o2) = (orient(p, q, a), orient(p, q, b));
-        let s2 = side_with(o2, p, q, b);
-        if side_with(o1, p, q, a) == s2 {
-            return None;
-        }
-        let (o3, o4) = (orient(a, b, p), orient(a, b, q));
-        if side_with(o3, a, b, p) == side_with(o4, a, b, q) {
-            return None;
-        }
+        let (o1, o2, o3, o4, s2) = self.straddle(p, q)?;
         stats.crossings += 1;
         if segment_minus(a, b, p, q, o1, o2, o3, o4) >= 0 {
             return None;
@@ -441,16 +221,33 @@ impl Line<'_> {
 
     /// Do `p`-`q` and the edge cross on screen (the test of [`cross`](Self::cross))?
     fn meets(&self, p: Pt, q: Pt) -> bool {
+        let (lo, hi) = ((p.x.min(q.x), p.y.min(q.y)), (p.x.max(q.x), p.y.max(q.y)));
+        self.box_meets(lo, hi) && self.straddle(p, q).is_some()
+    }
+
+    /// Does the screen box `lo`..`hi` meet the edge's?
+    #[inline(always)]
+    fn box_meets(&self, lo: (i32, i32), hi: (i32, i32)) -> bool {
+        hi.0 >= self.lo.0 && lo.0 <= self.hi.0 && hi.1 >= self.lo.1 && lo.1 <= self.hi.1
+    }
+
+    /// Where `p`-`q` and the edge cross on screen (each pair of ends on the two
+    /// sides of the other segment, moved as [`side_with`] moves them): the
+    /// orientations of `a`, `b` to `p`-`q` and of `p`, `q` to `a`-`b`, and the
+    /// side of `b`.
+    #[inline(always)]
+    fn straddle(&self, p: Pt, q: Pt) -> Option<(i64, i64, i64, i64, i32)> {
         let (a, b) = (self.a, self.b);
-        if p.x.max(q.x) < self.lo.0
-            || p.x.min(q.x) > self.hi.0
-            || p.y.max(q.y) < self.lo.1
-            || p.y.min(q.y) > self.hi.1
-        {
-            return false;
+        let (o1, o2) = (orient(p, q, a), orient(p, q, b));
+        let s2 = side_with(o2, p, q, b);
+        if side_with(o1, p, q, a) == s2 {
+            return None;
         }
-        side_with(orient(p, q, a), p, q, a) != side_with(orient(p, q, b), p, q, b)
-            && side_with(orient(a, b, p), a, b, p) != side_with(orient(a, b, q), a, b, q)
+        let (o3, o4) = (orient(a, b, p), orient(a, b, q));
+        if side_with(o3, a, b, p) == side_with(o4, a, b, q) {
+            return None;
+        }
+        Some((o1, o2, o3, o4, s2))
     }
 
     /// Where `a + (b - a) o1 / (o1 - o2)` lies along the major axis, in

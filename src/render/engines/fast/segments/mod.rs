@@ -30,6 +30,7 @@ mod chains;
 mod contours;
 pub(crate) mod exact;
 mod piercings;
+mod sides;
 mod source;
 mod vertex_faces;
 
@@ -371,11 +372,14 @@ impl Scene<'_, '_> {
     /// area's sign times this: for a simple polygon, once inside and not at all
     /// outside, however its fan overlaps.
     fn winding(&self, corners: &[u32]) -> i8 {
-        let p = |k: usize| self.p(corners.get(k).copied().unwrap_or(0) as u16);
-        let p0 = p(0);
+        let at = |k: usize| {
+            let v = corners.get(k).copied().unwrap_or(0);
+            self.cache.get(v as usize).copied().unwrap_or_default()
+        };
+        let p0 = at(0);
         let mut total = 0i64;
         for i in 1..corners.len().saturating_sub(1) {
-            total += exact::orient(p0, p(i), p(i + 1));
+            total += super::polygon::turn(p0, at(i), at(i + 1));
         }
         if total < 0 {
             -1
@@ -402,7 +406,7 @@ impl Scene<'_, '_> {
     }
 
     /// May edge `e` be an outline, whose faces that do not hide it reach beyond
-    /// its own ([`contours::not_hiding`])? A boundary or non-manifold edge, or
+    /// its own ([`sides::not_hiding`])? A boundary or non-manifold edge, or
     /// one between a face that faces the eye and one that does not (by the
     /// faces' planes: snapping may still lay both on one side of it on screen,
     /// so it need not be a contour).
